@@ -1,0 +1,75 @@
+// The DC-shell pipeline: parts -> hulls -> overlaps -> cut planes (+ refinement sweeps) ->
+// exact trim -> certified rounding -> optional simplify/regularise -> certification.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "dcshell/certify.h"
+#include "dcshell/cut_plane.h"
+#include "dcshell/fit_cut_plane.h"
+#include "dcshell/load_parts.h"
+#include "dcshell/remesh.h"
+#include "dcshell/trim.h"
+
+namespace dcshell {
+
+struct ShellOptions {
+  CutOptions cut;  ///< method (default full), lambda, svm_c, seed
+  /// Maximum refinement sweeps: each re-optimises every pair's plane against the two hulls as
+  /// already trimmed by all their other planes, keeping a new plane only when it loses less.
+  /// Used by the volume-minimising methods (exact, full); lsf and svm are single-pass.
+  int max_sweeps = 6;
+  /// A hull with at least this fraction of its volume inside one other hull is absorbed by it
+  /// (no shell of its own; reported). Exactly nested and duplicated parts are absorbed too.
+  double absorb_fraction = 0.99;
+  /// Simplify + regularise hulls before cutting and shells after (0 = off), paper: 10 and 5%.
+  int simplify_iterations = 0;
+  double max_volume_increase = 0.05;
+  /// Called with (stage, done, total) as work proceeds.
+  std::function<void(const std::string&, std::size_t, std::size_t)> progress;
+};
+
+struct ShellCut {
+  CutPlane plane;            ///< oriented so that this shell keeps normal·x <= offset
+  std::size_t partner = 0;   ///< the part on the other side
+};
+
+struct Shell {
+  std::size_t part = 0;                ///< source part
+  std::vector<std::size_t> absorbed;   ///< parts absorbed into this shell
+  std::vector<ShellCut> cuts;
+  Mesh mesh;                           ///< the shell as written: double coordinates, certified
+  double volume = 0.0;                 ///< exact volume of `mesh`, rounded
+  TrimStats trim;
+  bool remeshed = false;
+  RemeshStats remesh;
+};
+
+struct AbsorbedPart {
+  std::size_t part = 0, container = 0;
+  double fraction_inside = 0.0;  ///< of the part's hull volume
+};
+
+struct StageTime {
+  std::string stage;
+  double seconds = 0.0;
+};
+
+struct ShellResult {
+  std::vector<Shell> shells;
+  std::vector<AbsorbedPart> absorbed;
+  std::vector<std::size_t> vanished;   ///< parts whose shell was cut away entirely
+  std::size_t overlapping_pairs = 0;
+  int sweeps_run = 0;
+  double union_volume = 0.0;           ///< of the parts' original convex hulls (certified enclosure midpoint)
+  double shells_volume = 0.0;
+  double volume_loss = 0.0;            ///< (union - shells) / union
+  CertificationReport certification;
+  std::vector<StageTime> times;
+};
+
+/// Builds certified DC-shells for the parts. Deterministic for given options.
+ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& options);
+
+}  // namespace dcshell

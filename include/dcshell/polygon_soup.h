@@ -1,0 +1,18 @@
+// Plain polygon soup as read from a mesh file, before any topology is built.
+#pragma once
+#include <array>
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace dcshell {
+
+struct PolygonSoup {
+  std::vector<std::array<double, 3>> points;
+  std::vector<std::vector<std::size_t>> faces;  ///< indices into points, >= 3 each
+  /// OBJ `o`/`g` group of each face (index into group_names); empty when the file has no groups.
+  std::vector<std::size_t> face_group;
+  std::vector<std::string> group_names;
+};
+
+}  // namespace dcshell

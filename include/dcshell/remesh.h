@@ -1,0 +1,57 @@
+// Stage "remesh": the driver combining simplification (simplify.h) and regularisation
+// (regularise.h), as the paper's "--simplify-iterations N --max-volume-increase R" does, plus
+// the constraints a set of existing shells imposes on each other.
+#pragma once
+#include <cstddef>
+#include <functional>
+#include <vector>
+
+#include "dcshell/kernel.h"
+#include "dcshell/simplify.h"
+
+namespace dcshell {
+
+struct RemeshOptions {
+  int iterations = 10;               ///< simplify + smooth rounds (the paper: 10)
+  double max_volume_increase = 0.05; ///< bound on (V_after - V_before) / V_before (the paper: 5%)
+  std::size_t target_faces = 0;      ///< optional lower bound on the face count (0: none)
+  /// Called after each iteration with the working mesh (convex; for benchmarks and progress).
+  std::function<void(int iteration, const Mesh& mesh)> on_iteration;
+};
+
+struct RemeshStats {
+  std::size_t faces_before = 0, faces_after = 0;
+  double fatness_before = 0, fatness_after = 0;  ///< weighted_fatness
+  double volume_before = 0, volume_after = 0;
+  std::size_t collapses = 0, moves = 0;
+  double volume_increase() const { return volume_before > 0 ? volume_after / volume_before - 1.0 : 0.0; }
+};
+
+/// Simplifies and regularises one convex shell. The result is the convex_hull_3 of its vertices
+/// (closed, outward, exactly convex triangles, double coordinates) and, checked exactly on those
+/// doubles, contains `shell` and satisfies `constraints`; it has at most the faces of `shell` and
+/// volume <= (1 + max_volume_increase) * volume(shell) (floating-point volumes). Each iteration is
+/// one simplification pass (an independent set of cheapest collapses, each only if its new faces
+/// are fatter than those it removes) then one smoothing sweep,
+/// both within the whole volume budget; the first N iterations
+/// of a run are the same whatever N, and it stops early once an iteration changes nothing.
+/// Vertices on a constraint plane stay on it or inside, so cut faces stay where they were.
+/// Throws InputError if `shell` is not exactly convex and closed or violates `constraints`.
+Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints, const RemeshOptions& options,
+                         RemeshStats* stats = nullptr);
+
+/// Convenience for the pipeline: constraints are the shell's own cut planes.
+Mesh remesh_convex_shell(const Mesh& shell, const std::vector<CutPlane>& keep_inside, const RemeshOptions& options,
+                         RemeshStats* stats = nullptr);
+
+/// For a set of pairwise interior-disjoint convex shells, the halfspaces that keep each one off
+/// its neighbours while they all grow: for every pair whose bounding boxes touch, a face plane
+/// of one that has the other entirely on its outer side (decided exactly), preferring a face
+/// the two share (coplanar, opposite orientation, overlapping). Both shells of the pair get the
+/// same exact plane, one from each side, so the pair stays disjoint whatever else moves.
+/// `unseparated` receives pairs (i < j) for which no face plane separates (an edge-edge contact);
+/// they are left unconstrained and the final certification decides.
+std::vector<ShellConstraints> neighbour_constraints(const std::vector<Mesh>& shells,
+                                                    std::vector<std::pair<std::size_t, std::size_t>>* unseparated = nullptr);
+
+}  // namespace dcshell

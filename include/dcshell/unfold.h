@@ -1,0 +1,88 @@
+// Stage "unfold": a convex triangle shell cut along a spanning tree of its dual graph and laid
+// flat as a one-piece net (Net, net.h). Cut trees come from Schlickenrieder's heuristics
+// ("Nets of polyhedra", 1997) with retries, or from a genetic search (unfold_ga.h).
+//
+// Coplanar faces are never cut apart: a fold of angle 0 is free and invisible, so the cut tree
+// is built on "facets" (maximal regions joined by flat edges) and every flat edge stays a fold.
+// That is what makes a triangulated cube cut along 7 cube edges instead of 18 triangle edges.
+#pragma once
+#include <cstdint>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "dcshell/fold_check.h"
+#include "dcshell/kernel.h"
+#include "dcshell/net.h"
+
+namespace dcshell {
+
+/// How the cut tree is chosen. `best`: every heuristic with retries, the best overlap-free net
+/// by the objective. `ga`: `best`, then the genetic search of unfold_ga.h seeded with its nets.
+enum class UnfoldHeuristic { best, steepest, flat, min_perimeter, random, ga };
+/// What "best" means among overlap-free nets (the other feature breaks ties, weight 1/100).
+enum class UnfoldObjective { hull_area, cut_length };
+
+/// "steepest|flat|min-perimeter|random|ga|best" <-> enum. Parsing throws std::invalid_argument
+/// naming the string and the accepted values.
+UnfoldHeuristic parse_unfold_heuristic(const std::string&);
+UnfoldObjective parse_unfold_objective(const std::string&);
+std::string to_string(UnfoldHeuristic);
+std::string to_string(UnfoldObjective);
+
+struct UnfoldOptions {
+  UnfoldHeuristic heuristic = UnfoldHeuristic::best;
+  UnfoldObjective objective = UnfoldObjective::hull_area;
+  std::uint64_t seed = 1;
+  /// Cut trees tried per heuristic; 0 = automatic (many for small shells, few for large ones,
+  /// so a shell costs about the same whatever its size). A count, not a time, so results do not
+  /// depend on the machine.
+  int tries = 0;
+  /// |fold angle| (radians) at or below which an edge counts as flat: never cut, and not a
+  /// reflex edge either. Files round coordinates (the shared convex models are up to 1.5e-5 rad
+  /// off-convex); a fold of 0.006 degrees is invisible on paper.
+  double flat_angle = 1e-4;
+  /// The straight-line folding path of a net may collide. The best overlap-free nets are checked
+  /// in score order (fold_check.h) and the first one that folds without collision is returned;
+  /// this many at most (none for shells over 5,000 faces: the check is then the caller's; 0 = no check).
+  int fold_candidates = 6;
+};
+
+/// Features of a net, each in model units.
+struct NetMetrics {
+  double cut_length = 0;  ///< total length of the cut shell edges (each counted once)
+  double hull_area = 0;   ///< area of the convex hull of the net
+  int overlapping_pairs = 0;  ///< pairs of net faces whose interiors overlap (0 = overlap-free)
+};
+
+struct UnfoldStats {
+  int faces = 0, facets = 0;  ///< triangles; maximal coplanar regions
+  bool convex = true;         ///< no reflex edge beyond flat_angle (closed genus 0 is required)
+  int reflex_edges = 0;
+  double max_reflex_angle = 0;  ///< radians
+  std::string heuristic;        ///< the heuristic that produced the returned net
+  int attempts = 0;             ///< distinct cut trees evaluated
+  NetMetrics first;             ///< the first net tried (steepest edge, first direction)
+  NetMetrics result;            ///< the returned net
+  FoldCheckResult fold;         ///< folding check of the returned net (not run: verified=false, steps=0)
+  int fold_checks = 0;          ///< nets whose folding was checked
+  double seconds = 0;
+};
+
+/// Unfolds a closed triangle (or convex-polygon) mesh. Polygons are fan-triangulated from their
+/// first corner, in face order; the net's faces are those triangles in that order.
+/// Returns the best net found; it may overlap (stats->result.overlapping_pairs > 0) when no
+/// overlap-free one was found (possible only for non-convex input in practice).
+/// Throws InputError when the mesh is not a closed oriented 2-manifold of genus 0, has fewer
+/// than 4 faces, or has a degenerate (zero-area) face.
+Net unfold_convex_mesh(const Mesh& mesh, const UnfoldOptions& options = {}, UnfoldStats* stats = nullptr);
+
+/// Cut length, hull area and overlap count of a net.
+NetMetrics net_metrics(const Net& net);
+
+/// The net as OBJ: `v x y 0` per net corner (round-trip precision), then one `f` per shell
+/// triangle in shell order, corners in the shell's order. Corners shared by faces joined along a
+/// fold are written once, so a checker sees the folds as shared edges.
+void write_net_obj(const Net& net, std::ostream& out);
+
+}  // namespace dcshell

@@ -1,0 +1,236 @@
+// `dcshell unfold`: convex shells -> one-piece overlap-free nets (net_k.obj), printable sheets
+// (nets.svg|pdf), a JSON report with the folding check, and optionally the folding motion.
+#include <boost/program_options.hpp>
+#include <cmath>
+#include <filesystem>
+#include <iomanip>
+#include <iostream>
+#include <set>
+#include <sstream>
+
+#include "cli/command.h"
+#include "cli/report.h"
+#include "dcshell/atomic_output.h"
+#include "dcshell/error.h"
+#include "dcshell/fold_check.h"
+#include "dcshell/json.h"
+#include "dcshell/net_sheets.h"
+#include "dcshell/read_mesh.h"
+#include "dcshell/unfold.h"
+#include "dcshell/unfold_ga.h"
+
+namespace po = boost::program_options;
+namespace fs = std::filesystem;
+
+namespace dcshell::cli {
+namespace {
+
+struct ShellResult {
+  std::string input, net_file;
+  Net net;
+  UnfoldStats stats;
+  FoldCheckResult fold;
+  double seconds = 0;
+};
+
+std::string numbered(const std::string& prefix, std::size_t k, const std::string& ext) {
+  std::ostringstream os;
+  os << prefix << std::setw(3) << std::setfill('0') << k << ext;
+  return os.str();
+}
+
+// Frames of the folding motion, all shells side by side (each shifted along x past the previous
+// one's net), one OBJ per frame: FILE's stem + _NNN + extension.
+void write_motion(const std::string& file, int frames, const std::vector<ShellResult>& shells,
+                  const std::vector<std::string>& inputs) {
+  fs::path p(file);
+  std::string stem = (p.parent_path() / p.stem()).string(), ext = p.has_extension() ? p.extension().string() : ".obj";
+  std::vector<std::string> names;
+  for (int i = 0; i < frames; ++i) names.push_back(numbered(stem + "_", static_cast<std::size_t>(i), ext));
+  for (auto& n : names)
+    for (auto& in : inputs)
+      if (fs::exists(n) && fs::equivalent(n, in)) throw InputError(n + ": --motion would overwrite an input");
+  std::vector<double> shift(shells.size(), 0.0);
+  double x = 0;
+  for (std::size_t s = 0; s < shells.size(); ++s) {
+    double lo = 1e300, hi = -1e300;
+    for (auto& c : shells[s].net.corners)
+      for (auto& q : c) lo = std::min(lo, q.x()), hi = std::max(hi, q.x());
+    shift[s] = x - lo;
+    x += (hi - lo) * 1.1;
+  }
+  for (int i = 0; i < frames; ++i) {
+    double t = frames > 1 ? static_cast<double>(i) / (frames - 1) : 1.0;
+    write_file_atomically(names[i], [&](std::ostream& os) {
+      os << std::setprecision(17) << "# dcshell folding motion, t = " << t << "\n";
+      std::size_t base = 1;
+      for (std::size_t s = 0; s < shells.size(); ++s) {
+        auto faces = folded_faces(shells[s].net, t);
+        os << "o " << shells[s].net.name << "\n";
+        for (auto& f : faces)
+          for (auto& q : f) os << "v " << q.x() + shift[s] << " " << q.y() << " " << q.z() << "\n";
+        for (std::size_t f = 0; f < faces.size(); ++f, base += 3) os << "f " << base << " " << base + 1 << " " << base + 2 << "\n";
+      }
+    });
+  }
+}
+
+int run_unfold(int argc, char** argv) {
+  return guarded("unfold", [&] {
+    po::options_description opts(
+        "usage: dcshell unfold [options] --out DIR SHELL|DIR...\n\n"
+        "Unfolds each closed convex shell into a one-piece net that folds back without collision.\n"
+        "Writes DIR/net_NNN.obj (the flat net, z = 0: the shell's triangles in order, corners in\n"
+        "order), DIR/nets.svg or nets.pdf (printable sheets) and DIR/unfold.json (per shell: faces,\n"
+        "cut length, net hull area, overlap-free, fold path verified, time).\n"
+        "Exit status: 0 every net overlap-free and its folding verified, 1 otherwise, 2 bad input.\n\noptions");
+    std::string heuristic = "best", objective = "hull-area", out, format = "svg", paper = "a4", motion;
+    std::uint64_t seed = 1;
+    int tries = 0, ga_evaluations = 0, frames = 31;
+    double scale = 0;
+    opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (created atomically)")(
+        "force,f", "replace an existing non-empty output directory")(
+        "heuristic", po::value(&heuristic)->default_value("best"),
+        "steepest|flat|min-perimeter|random|ga|best (best: every heuristic with retries; ga: then a genetic search)")(
+        "objective", po::value(&objective)->default_value("hull-area"), "hull-area|cut-length: what 'best' minimises")(
+        "seed", po::value(&seed)->default_value(1), "random seed (results are reproducible)")(
+        "tries", po::value(&tries)->default_value(0), "cut trees per heuristic (0 = automatic)")(
+        "ga-evaluations", po::value(&ga_evaluations)->default_value(0), "nets the genetic search evaluates (0 = automatic)")(
+        "format", po::value(&format)->default_value("svg"), "sheet format: svg|pdf")(
+        "paper", po::value(&paper)->default_value("a4"), "paper: a3|a4|a5|letter|legal|WxHmm")(
+        "scale", po::value(&scale), "millimetres per model unit (default: --fit)")(
+        "fit", "largest common scale at which every piece fits on a page")("no-tabs", "no glue tabs")(
+        "motion", po::value(&motion), "write the folding motion as numbered OBJ frames FILE_000.obj...")(
+        "motion-frames", po::value(&frames)->default_value(31), "frames of the motion (>= 2)");
+    std::vector<std::string> inputs;
+    po::options_description hidden;
+    hidden.add_options()("input", po::value(&inputs));
+    po::options_description all;
+    all.add(opts).add(hidden);
+    po::positional_options_description pos;
+    pos.add("input", -1);
+    po::variables_map vm;
+    po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
+    po::notify(vm);
+    if (vm.count("help")) {
+      std::cout << opts << "\n";
+      return 0;
+    }
+
+    // Options first: a usage error writes nothing.
+    UnfoldOptions uo;
+    SheetOptions so;
+    try {
+      uo.heuristic = parse_unfold_heuristic(heuristic);
+      uo.objective = parse_unfold_objective(objective);
+      so = SheetOptions::paper_from_string(paper);
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+    uo.seed = seed;
+    uo.tries = tries;
+    if (out.empty()) throw InputError("--out DIR is required (see 'dcshell unfold --help')");
+    if (inputs.empty()) throw InputError("no input shells (see 'dcshell unfold --help')");
+    if (format == "svg") so.format = SheetOptions::Format::svg;
+    else if (format == "pdf") so.format = SheetOptions::Format::pdf;
+    else throw InputError("unknown format '" + format + "' (svg|pdf)");
+    if (vm.count("scale") && vm.count("fit")) throw InputError("--scale and --fit exclude each other");
+    if (vm.count("scale") && !(scale > 0 && std::isfinite(scale))) throw InputError("--scale must be a positive number of mm per unit");
+    so.scale_mm_per_unit = vm.count("scale") ? scale : 0.0;
+    so.tabs = !vm.count("no-tabs");
+    if (tries < 0 || ga_evaluations < 0) throw InputError("--tries and --ga-evaluations must be >= 0");
+    if (vm.count("motion") && frames < 2) throw InputError("--motion-frames must be at least 2");
+
+    auto t0 = std::chrono::steady_clock::now();
+    auto files = expand_inputs(inputs);
+    std::vector<Mesh> meshes;
+    for (auto& f : files) meshes.push_back(read_mesh(f));
+    AtomicDirectory dir(out, vm.count("force") > 0, files);
+
+    std::vector<ShellResult> shells(files.size());
+    std::set<std::string> used_names;
+    for (std::size_t k = 0; k < files.size(); ++k) {
+      auto& s = shells[k];
+      s.input = files[k];
+      auto ts = std::chrono::steady_clock::now();
+      try {
+        if (uo.heuristic == UnfoldHeuristic::ga) {
+          GaOptions ga;
+          ga.evaluations = ga_evaluations;
+          s.net = unfold_ga(meshes[k], uo, ga, &s.stats);
+        } else {
+          s.net = unfold_convex_mesh(meshes[k], uo, &s.stats);
+        }
+      } catch (const InputError& e) {
+        throw InputError(input_error_message(files[k], 0, e.what()));
+      }
+      std::string name = fs::path(files[k]).stem().string();
+      if (!used_names.insert(name).second) name = numbered("shell_", k, "");
+      used_names.insert(name);
+      s.net.name = name;
+      s.fold = s.stats.fold_checks > 0 ? s.stats.fold : check_folding(s.net);
+      s.seconds = seconds_since(ts);
+      s.net_file = numbered("net_", k, ".obj");
+      dir.write(s.net_file, [&](std::ostream& os) { write_net_obj(s.net, os); });
+      if (!s.stats.convex)
+        std::cerr << "dcshell unfold: warning: " << files[k] << " is not convex (" << s.stats.reflex_edges
+                  << " reflex edges, up to " << s.stats.max_reflex_angle * 180 / M_PI << " degrees); unfolded anyway\n";
+      if (s.stats.result.overlapping_pairs)
+        std::cerr << "dcshell unfold: " << files[k] << ": no overlap-free net found (" << s.stats.result.overlapping_pairs
+                  << " overlapping face pairs in the best net)\n";
+      if (!s.fold.verified) std::cerr << "dcshell unfold: " << files[k] << ": folding not verified: " << s.fold.message << "\n";
+    }
+
+    std::vector<Net> nets;
+    for (auto& s : shells) nets.push_back(s.net);
+    std::string sheet_file = so.format == SheetOptions::Format::pdf ? "nets.pdf" : "nets.svg";
+    try {
+      dir.write(sheet_file, [&](std::ostream& os) { write_net_sheets(nets, so, {}, os); });
+    } catch (const std::invalid_argument& e) {
+      throw InputError(e.what());
+    }
+
+    bool all_good = true;
+    for (auto& s : shells) all_good &= s.stats.result.overlapping_pairs == 0 && s.fold.verified;
+    dir.write("unfold.json", [&](std::ostream& os) {
+      JsonWriter json(os);
+      json.begin_object();
+      json.field("tool", "dcshell unfold");
+      json.field("heuristic", heuristic).field("objective", objective).field("seed", static_cast<std::int64_t>(seed));
+      json.field("sheets", sheet_file);
+      json.key("shells").begin_array();
+      for (std::size_t k = 0; k < shells.size(); ++k) {
+        const auto& s = shells[k];
+        json.begin_object();
+        json.field("index", k).field("input", s.input).field("name", s.net.name).field("net", s.net_file);
+        json.field("faces", s.stats.faces).field("facets", s.stats.facets);
+        json.field("convex", s.stats.convex).field("reflex_edges", s.stats.reflex_edges);
+        json.field("heuristic", s.stats.heuristic).field("attempts", s.stats.attempts);
+        json.field("cut_length", s.stats.result.cut_length).field("hull_area", s.stats.result.hull_area);
+        json.field("overlap_free", s.stats.result.overlapping_pairs == 0)
+            .field("overlapping_pairs", s.stats.result.overlapping_pairs);
+        json.field("fold_path_verified", s.fold.verified).field("fold_check_steps", s.fold.steps);
+        if (!s.fold.verified) json.field("fold_check_t", s.fold.t).field("fold_check_problem", s.fold.message);
+        json.key("first_net").begin_object();
+        json.field("cut_length", s.stats.first.cut_length).field("hull_area", s.stats.first.hull_area);
+        json.end_object();
+        json.field("unfold_time_s", s.stats.seconds).field("time_s", s.seconds);
+        json.end_object();
+      }
+      json.end_array();
+      json.field("all_overlap_free_and_verified", all_good);
+      json.field("time_s", seconds_since(t0));
+      json.end_object();
+      os << "\n";
+    });
+    if (!motion.empty()) write_motion(motion, frames, shells, files);
+    dir.commit();
+    std::cerr << (all_good ? "ok: " : "NOT ok: ") << shells.size() << " nets written to " << out << "\n";
+    return all_good ? 0 : 1;
+  });
+}
+
+const CommandRegistration reg("unfold", "unfold convex shells into printable, overlap-free nets", run_unfold);
+
+}  // namespace
+}  // namespace dcshell::cli

@@ -1,0 +1,33 @@
+// CLI sub-command registry. Each src/cli/cmd_*.cpp registers itself with a static
+// `CommandRegistration`, so sub-commands are independent files.
+#pragma once
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace dcshell::cli {
+
+/// A sub-command gets its own arguments (argv[0] is the sub-command name) and returns the
+/// process exit code. Exit codes: 0 success/certified, 1 ran but not certified (or failed a
+/// quality condition), 2 bad input or usage.
+using CommandFn = std::function<int(int argc, char** argv)>;
+
+struct Command {
+  std::string name, summary;
+  CommandFn run;
+};
+
+std::vector<Command>& commands();
+
+struct CommandRegistration {
+  CommandRegistration(std::string name, std::string summary, CommandFn fn) {
+    commands().push_back({std::move(name), std::move(summary), std::move(fn)});
+  }
+};
+
+/// Runs `body`, mapping exceptions to exit codes and one-line messages on stderr:
+/// InputError and boost::program_options errors -> "dcshell <cmd>: error: ..." exit 2;
+/// any other exception -> exit 3 (internal error).
+int guarded(const std::string& cmd, const std::function<int()>& body);
+
+}  // namespace dcshell::cli

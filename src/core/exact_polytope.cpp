@@ -1,0 +1,268 @@
+// Exact convex polytope operations (Epeck). See exact_polytope.h for the representation.
+#include "dcshell/exact_polytope.h"
+
+#include <CGAL/convex_hull_3.h>
+#include <CGAL/intersections.h>
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "dcshell/convex_hull.h"
+
+namespace dcshell {
+
+namespace {
+
+using EPoint = Epeck::Point_3;
+using EPlane = Epeck::Plane_3;
+
+std::uint64_t edge_key(int u, int v) {
+  return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(u)) << 32) | static_cast<std::uint32_t>(v);
+}
+
+// Meet of three planes known to cross in a single point (two faces meeting along an edge and a
+// plane that strictly separates the edge's endpoints).
+EPoint meet(const EPlane& a, const EPlane& b, const EPlane& c) {
+  auto r = CGAL::intersection(a, b, c);
+  if (r) {
+    if (const EPoint* p = boost::get<EPoint>(&*r)) return *p;
+  }
+  throw std::logic_error("exact polytope: face planes do not meet in a point (corrupt polytope)");
+}
+
+}  // namespace
+
+CGAL::Oriented_side side(const EPlane& h, const EPoint& q) { return h.oriented_side(q); }
+
+EPlane exact_plane(const CutPlane& p) {
+  // normal·x - offset: the doubles are converted exactly.
+  return EPlane(p.normal.x(), p.normal.y(), p.normal.z(), -p.offset);
+}
+
+ExactPolytope exact_hull(const std::vector<Point3>& points, int tag) {
+  ExactPolytope out;
+  Mesh hull = convex_hull_mesh(points);
+  if (hull.number_of_faces() == 0) return out;
+  // Merge coplanar adjacent triangles so that every edge lies between two non-parallel
+  // planes: clipping then always creates vertices as a meet of three planes.
+  std::vector<int> group(hull.number_of_faces());
+  std::iota(group.begin(), group.end(), 0);
+  std::function<int(int)> find = [&](int x) { return group[x] == x ? x : group[x] = find(group[x]); };
+  for (auto e : hull.edges()) {
+    auto h = hull.halfedge(e);
+    auto f0 = hull.face(h), f1 = hull.face(hull.opposite(h));
+    const Point3& a = hull.point(hull.source(h));
+    const Point3& b = hull.point(hull.target(h));
+    const Point3& c = hull.point(hull.target(hull.next(h)));
+    const Point3& d = hull.point(hull.target(hull.next(hull.opposite(h))));
+    if (CGAL::orientation(a, b, c, d) == CGAL::COPLANAR) group[find(int(f0))] = find(int(f1));
+  }
+  out.vertices.reserve(hull.number_of_vertices());
+  for (auto v : hull.vertices()) {
+    const Point3& p = hull.point(v);
+    out.vertices.emplace_back(p.x(), p.y(), p.z());
+  }
+  // Boundary of each group: halfedges whose opposite face is in another group, chained.
+  std::map<int, std::unordered_map<int, int>> next_of;  // group -> (source -> target)
+  for (auto h : hull.halfedges()) {
+    auto f = hull.face(h), g = hull.face(hull.opposite(h));
+    if (find(int(f)) == find(int(g))) continue;
+    next_of[find(int(f))][int(hull.source(h))] = int(hull.target(h));
+  }
+  for (auto& [gid, nxt] : next_of) {
+    ExactPolytope::Face face;
+    // A deterministic start: the smallest vertex index of the loop.
+    int start = std::min_element(nxt.begin(), nxt.end())->first;
+    int v = start;
+    do {
+      face.loop.push_back(v);
+      v = nxt.at(v);
+    } while (v != start && face.loop.size() <= nxt.size());
+    auto fh = hull.halfedge(Mesh::Face_index(gid));
+    face.plane = EPlane(out.vertices[hull.source(fh)], out.vertices[hull.target(fh)],
+                        out.vertices[hull.target(hull.next(fh))]);
+    face.tag = tag;
+    out.faces.push_back(std::move(face));
+  }
+  return out;
+}
+
+ExactPolytope clip(const ExactPolytope& p, const EPlane& h, int tag) {
+  const int n = static_cast<int>(p.vertices.size());
+  std::vector<CGAL::Oriented_side> s(n);
+  bool any_neg = false, any_pos = false;
+  for (int i = 0; i < n; ++i) {
+    s[i] = h.oriented_side(p.vertices[i]);
+    any_neg |= s[i] == CGAL::ON_NEGATIVE_SIDE;
+    any_pos |= s[i] == CGAL::ON_POSITIVE_SIDE;
+  }
+  if (!any_neg) return {};  // nothing of the interior is strictly inside h
+  if (!any_pos) return p;   // h does not cut the interior
+
+  // Which face is on the other side of each directed edge.
+  std::unordered_map<std::uint64_t, int> face_of_edge;
+  for (int f = 0; f < int(p.faces.size()); ++f) {
+    const auto& L = p.faces[f].loop;
+    for (std::size_t k = 0; k < L.size(); ++k) face_of_edge[edge_key(L[k], L[(k + 1) % L.size()])] = f;
+  }
+
+  ExactPolytope out;
+  std::vector<int> remap(n, -1);
+  auto keep = [&](int v) {
+    if (remap[v] < 0) {
+      remap[v] = int(out.vertices.size());
+      out.vertices.push_back(p.vertices[v]);
+    }
+    return remap[v];
+  };
+  std::unordered_map<std::uint64_t, int> crossing;  // undirected edge -> new vertex
+  std::vector<char> on_h;                           // per output vertex
+  auto mark = [&](int idx, bool value) {
+    if (int(on_h.size()) <= idx) on_h.resize(idx + 1, 0);
+    on_h[idx] = value;
+  };
+
+  std::unordered_map<int, int> cap_next;  // cap boundary, directed: from -> to
+  bool face_on_h = false;
+  for (int f = 0; f < int(p.faces.size()); ++f) {
+    const auto& F = p.faces[f];
+    const auto& L = F.loop;
+    std::vector<int> loop;
+    bool all_zero = true;
+    for (std::size_t k = 0; k < L.size(); ++k) {
+      int u = L[k], v = L[(k + 1) % L.size()];
+      all_zero &= s[u] == CGAL::ON_ORIENTED_BOUNDARY;
+      if (s[u] != CGAL::ON_POSITIVE_SIDE) {
+        int iu = keep(u);
+        mark(iu, s[u] == CGAL::ON_ORIENTED_BOUNDARY);
+        loop.push_back(iu);
+      }
+      bool crosses = (s[u] == CGAL::ON_NEGATIVE_SIDE && s[v] == CGAL::ON_POSITIVE_SIDE) ||
+                     (s[u] == CGAL::ON_POSITIVE_SIDE && s[v] == CGAL::ON_NEGATIVE_SIDE);
+      if (crosses) {
+        auto key = edge_key(std::min(u, v), std::max(u, v));
+        auto it = crossing.find(key);
+        int idx;
+        if (it == crossing.end()) {
+          const int g = face_of_edge.at(edge_key(v, u));
+          idx = int(out.vertices.size());
+          out.vertices.push_back(meet(F.plane, p.faces[g].plane, h));
+          mark(idx, true);
+          crossing.emplace(key, idx);
+        } else {
+          idx = it->second;
+        }
+        loop.push_back(idx);
+      }
+    }
+    if (all_zero) face_on_h = true;  // this face already is the cap
+    if (loop.size() < 3) continue;   // face clipped away or reduced to an edge/point
+    if (!all_zero) {
+      for (std::size_t k = 0; k < loop.size(); ++k) {
+        int a = loop[k], b = loop[(k + 1) % loop.size()];
+        if (on_h[a] && on_h[b]) cap_next[b] = a;  // the cap runs the other way round
+      }
+    }
+    out.faces.push_back({F.plane, std::move(loop), F.tag});
+  }
+  if (!face_on_h && cap_next.size() >= 3) {
+    ExactPolytope::Face cap;
+    cap.plane = h;
+    cap.tag = tag;
+    int start = std::min_element(cap_next.begin(), cap_next.end())->first;
+    int v = start;
+    do {
+      cap.loop.push_back(v);
+      auto it = cap_next.find(v);
+      if (it == cap_next.end()) throw std::logic_error("exact polytope: open cap boundary");
+      v = it->second;
+    } while (v != start && cap.loop.size() <= cap_next.size());
+    out.faces.push_back(std::move(cap));
+  }
+  return out;
+}
+
+ExactPolytope intersect(const ExactPolytope& a, const ExactPolytope& b) {
+  if (a.empty() || b.empty()) return {};
+  ExactPolytope r = a;
+  for (const auto& f : b.faces) {
+    r = clip(r, f.plane, f.tag);
+    if (r.empty()) return {};
+  }
+  return r;
+}
+
+ExactRational exact_volume(const ExactPolytope& p) {
+  if (p.empty()) return ExactRational(0);
+  using EK = CGAL::Exact_predicates_exact_constructions_kernel::Exact_kernel;
+  std::vector<EK::Point_3> q;
+  q.reserve(p.vertices.size());
+  for (const auto& v : p.vertices) q.push_back(CGAL::exact(v));
+  const EK::Point_3& o = q[p.faces.front().loop.front()];
+  ExactRational six_vol(0);
+  for (const auto& f : p.faces) {
+    const auto& L = f.loop;
+    for (std::size_t k = 1; k + 1 < L.size(); ++k) {
+      auto a = q[L[0]] - o, b = q[L[k]] - o, c = q[L[k + 1]] - o;
+      six_vol += CGAL::determinant(a, b, c);
+    }
+  }
+  return six_vol / 6;
+}
+
+CGAL::Interval_nt<false> volume_interval(const ExactPolytope& p) {
+  using I = CGAL::Interval_nt<false>;
+  if (p.empty()) return I(0);
+  using AK = Epeck::Approximate_kernel;
+  std::vector<AK::Point_3> q;
+  q.reserve(p.vertices.size());
+  for (const auto& v : p.vertices) {
+    AK::Point_3 a = CGAL::approx(v);
+    // A vertex from nearly parallel planes can carry a loose interval; evaluating it exactly
+    // (rarely needed) makes Epeck replace its interval by a tight one.
+    auto loose = [](const I& x) { return x.sup() - x.inf() > 1e-13 * (std::fabs(x.inf()) + std::fabs(x.sup()) + 1e-300); };
+    if (loose(a.x()) || loose(a.y()) || loose(a.z())) {
+      CGAL::exact(v);
+      a = CGAL::approx(v);
+    }
+    q.push_back(a);
+  }
+  const AK::Point_3& o = q[p.faces.front().loop.front()];
+  // Unprotected intervals are only sound with the FPU rounding towards +infinity.
+  CGAL::Protect_FPU_rounding<true> upward;
+  I six(0);
+  for (const auto& f : p.faces)
+    for (std::size_t k = 1; k + 1 < f.loop.size(); ++k)
+      six += CGAL::determinant(q[f.loop[0]] - o, q[f.loop[k]] - o, q[f.loop[k + 1]] - o);
+  return six / 6;
+}
+
+double approximate_volume(const ExactPolytope& p) {
+  if (p.empty()) return 0.0;
+  std::vector<Eigen::Vector3d> q;
+  q.reserve(p.vertices.size());
+  for (const auto& v : p.vertices) q.emplace_back(CGAL::to_double(v.x()), CGAL::to_double(v.y()), CGAL::to_double(v.z()));
+  const Eigen::Vector3d o = q[p.faces.front().loop.front()];
+  double six = 0;
+  for (const auto& f : p.faces)
+    for (std::size_t k = 1; k + 1 < f.loop.size(); ++k)
+      six += (q[f.loop[0]] - o).dot((q[f.loop[k]] - o).cross(q[f.loop[k + 1]] - o));
+  return six / 6.0;
+}
+
+ConvexPolytope to_double(const ExactPolytope& p) {
+  ConvexPolytope out;
+  out.vertices.reserve(p.vertices.size());
+  for (const auto& v : p.vertices)
+    out.vertices.emplace_back(CGAL::to_double(v.x()), CGAL::to_double(v.y()), CGAL::to_double(v.z()));
+  for (const auto& f : p.faces) {
+    out.faces.push_back(f.loop);
+    out.face_tags.push_back(f.tag);
+  }
+  return out;
+}
+
+}  // namespace dcshell

@@ -1,0 +1,114 @@
+// Stage "load": files -> parts (one per file, per OBJ group, or per connected component).
+#include "dcshell/load_parts.h"
+
+#include <CGAL/Bbox_3.h>
+
+#include <filesystem>
+#include <numeric>
+
+#include "dcshell/convex_hull.h"
+#include "dcshell/error.h"
+#include "dcshell/exact_polytope.h"
+#include "dcshell/read_mesh.h"
+
+namespace dcshell {
+
+namespace {
+
+std::string base_name(const std::string& path) { return std::filesystem::path(path).filename().string(); }
+
+// Points referenced by a subset of the faces, in first-reference order (deterministic).
+std::vector<Point3> referenced_points(const PolygonSoup& soup, const std::vector<std::size_t>& faces) {
+  std::vector<char> seen(soup.points.size(), 0);
+  std::vector<Point3> pts;
+  for (std::size_t f : faces)
+    for (std::size_t v : soup.faces[f])
+      if (!seen[v]) {
+        seen[v] = 1;
+        const auto& q = soup.points[v];
+        pts.emplace_back(q[0], q[1], q[2]);
+      }
+  return pts;
+}
+
+// Faces grouped by connected component (faces sharing a vertex index are connected).
+std::vector<std::vector<std::size_t>> components(const PolygonSoup& soup) {
+  std::vector<std::size_t> parent(soup.points.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (const auto& f : soup.faces)
+    for (std::size_t k = 1; k < f.size(); ++k) parent[find(f[k])] = find(f[0]);
+  std::vector<std::vector<std::size_t>> out;
+  std::vector<long> comp_of_root(soup.points.size(), -1);
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
+    std::size_t r = find(soup.faces[f][0]);
+    if (comp_of_root[r] < 0) {
+      comp_of_root[r] = long(out.size());
+      out.emplace_back();
+    }
+    out[comp_of_root[r]].push_back(f);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector<std::string>& warnings,
+                             const LoadPartsOptions& options) {
+  std::vector<std::string> files = expand_inputs(inputs);
+  if (files.empty()) throw InputError("no input files");
+  std::vector<Part> parts;
+  if (files.size() == 1) {
+    const std::string& file = files[0];
+    PolygonSoup soup = read_polygon_soup(file);
+    std::vector<std::vector<std::size_t>> groups;
+    std::vector<std::string> names;
+    if (soup.group_names.size() > 1) {
+      groups.resize(soup.group_names.size());
+      for (std::size_t f = 0; f < soup.faces.size(); ++f) groups[soup.face_group[f]].push_back(f);
+      for (const auto& g : soup.group_names) names.push_back(base_name(file) + "#" + g);
+    } else {
+      groups = components(soup);
+      for (std::size_t c = 0; c < groups.size(); ++c)
+        names.push_back(groups.size() == 1 ? base_name(file) : base_name(file) + "#" + std::to_string(c));
+    }
+    for (std::size_t g = 0; g < groups.size(); ++g) {
+      if (groups[g].empty()) continue;
+      parts.push_back({names[g], file, referenced_points(soup, groups[g])});
+    }
+  } else {
+    for (const auto& file : files) {
+      PolygonSoup soup = read_polygon_soup(file);
+      std::vector<std::size_t> all(soup.faces.size());
+      std::iota(all.begin(), all.end(), 0);
+      parts.push_back({base_name(file), file, referenced_points(soup, all)});
+    }
+  }
+  // Scale of the whole shape, for the "tiny" test.
+  CGAL::Bbox_3 box;
+  for (const auto& p : parts)
+    for (const auto& q : p.points) box += q.bbox();
+  double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                          CGAL::square(box.zmax() - box.zmin()));
+  std::vector<Part> kept;
+  for (auto& p : parts) {
+    if (!spans_3d(p.points)) {
+      warnings.push_back(p.source + ": part " + p.name + " is flat (its points are coplanar); skipped");
+      continue;
+    }
+    double v = approximate_volume(exact_hull(p.points));
+    if (v < options.tiny_volume_fraction * diag * diag * diag) {
+      warnings.push_back(p.source + ": part " + p.name + " is tiny (hull volume " + std::to_string(v) +
+                         "); skipped");
+      continue;
+    }
+    kept.push_back(std::move(p));
+  }
+  if (kept.empty()) throw InputError((files.size() == 1 ? files[0] : std::string("input")) + ": no solid part left (all parts are flat or tiny)");
+  return kept;
+}
+
+}  // namespace dcshell

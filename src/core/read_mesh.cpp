@@ -1,0 +1,269 @@
+// Stage "load": mesh file reading with validation. OBJ is parsed here (line numbers for
+// errors, o/g groups for parts); OFF, PLY and STL go through CGAL's readers.
+#include "dcshell/read_mesh.h"
+
+#include <CGAL/IO/polygon_soup_io.h>
+#include <CGAL/Polygon_mesh_processing/orient_polygon_soup.h>
+#include <CGAL/Polygon_mesh_processing/polygon_soup_to_polygon_mesh.h>
+#include <CGAL/Polygon_mesh_processing/repair_polygon_soup.h>
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "dcshell/error.h"
+
+namespace fs = std::filesystem;
+namespace PMP = CGAL::Polygon_mesh_processing;
+
+namespace dcshell {
+
+std::string input_error_message(const std::string& file, std::size_t line, const std::string& what) {
+  return line ? file + ":" + std::to_string(line) + ": " + what : file + ": " + what;
+}
+
+namespace {
+
+constexpr double kMaxCoordinate = 1e12;         // beyond this, exact predicates still work but the
+                                                // geometry is meaningless (absurd units or garbage)
+constexpr std::size_t kMaxElements = 50000000;  // guards against absurd allocations
+
+[[noreturn]] void fail(const std::string& file, std::size_t line, const std::string& what) {
+  throw InputError(input_error_message(file, line, what));
+}
+
+std::string lower_extension(const std::string& path) {
+  std::string ext = fs::path(path).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext;
+}
+
+bool parse_double(const char*& p, const char* end, double& out) {
+  while (p < end && (*p == ' ' || *p == '\t')) ++p;
+  if (p == end) return false;
+  // from_chars for double is available in GCC 11+; it rejects "nan"/"inf" spelled oddly but
+  // accepts "nan" and "inf", which we then reject explicitly with a clear message.
+  auto r = std::from_chars(p, end, out);
+  if (r.ec != std::errc()) return false;
+  p = r.ptr;
+  return p == end || *p == ' ' || *p == '\t' || *p == '\r';
+}
+
+void validate_point(const std::string& file, std::size_t line, const std::array<double, 3>& q) {
+  for (double c : q) {
+    if (!std::isfinite(c)) fail(file, line, "coordinate is NaN or infinite");
+    if (std::fabs(c) > kMaxCoordinate) fail(file, line, "coordinate magnitude exceeds 1e12");
+  }
+}
+
+PolygonSoup read_obj(const std::string& path, std::istream& in) {
+  PolygonSoup soup;
+  std::string line;
+  std::size_t lineno = 0;
+  std::size_t current_group = 0;
+  bool have_group = false;
+  while (std::getline(in, line)) {
+    ++lineno;
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    const char* p = line.data();
+    const char* end = p + line.size();
+    while (p < end && (*p == ' ' || *p == '\t')) ++p;
+    if (p == end || *p == '#') continue;
+    const char* kw = p;
+    while (p < end && *p != ' ' && *p != '\t') ++p;
+    std::string key(kw, p);
+    if (key == "v") {
+      std::array<double, 3> q;
+      for (double& c : q)
+        if (!parse_double(p, end, c)) fail(path, lineno, "malformed vertex line");
+      validate_point(path, lineno, q);  // a fourth (w) or colour values may follow: ignored
+      if (soup.points.size() >= kMaxElements) fail(path, lineno, "too many vertices");
+      soup.points.push_back(q);
+    } else if (key == "f") {
+      std::vector<std::size_t> face;
+      std::istringstream ss(std::string(p, end));
+      std::string tok;
+      while (ss >> tok) {
+        long long idx = 0;
+        const char* b = tok.data();
+        auto r = std::from_chars(b, b + tok.size(), idx);
+        if (r.ec != std::errc() || (r.ptr != b + tok.size() && *r.ptr != '/'))
+          fail(path, lineno, "malformed face index '" + tok + "'");
+        long long n = static_cast<long long>(soup.points.size());
+        long long resolved = idx > 0 ? idx - 1 : n + idx;  // OBJ: 1-based, negative = relative
+        if (idx == 0 || resolved < 0 || resolved >= n)
+          fail(path, lineno, "face index " + std::to_string(idx) + " out of range (" + std::to_string(n) +
+                                 " vertices so far)");
+        face.push_back(static_cast<std::size_t>(resolved));
+      }
+      if (face.size() < 3) fail(path, lineno, "face with fewer than 3 vertices");
+      if (soup.faces.size() >= kMaxElements) fail(path, lineno, "too many faces");
+      soup.faces.push_back(std::move(face));
+      if (have_group) soup.face_group.push_back(current_group);
+    } else if (key == "o" || key == "g") {
+      std::string name(p, end);
+      name.erase(0, name.find_first_not_of(" \t"));
+      if (name.empty()) name = key + std::to_string(soup.group_names.size());
+      auto it = std::find(soup.group_names.begin(), soup.group_names.end(), name);
+      current_group = static_cast<std::size_t>(it - soup.group_names.begin());
+      if (it == soup.group_names.end()) soup.group_names.push_back(name);
+      if (!have_group) {
+        // faces before the first group form their own unnamed group
+        if (!soup.faces.empty()) {
+          soup.group_names.insert(soup.group_names.begin(), "ungrouped");
+          ++current_group;
+          soup.face_group.assign(soup.faces.size(), 0);
+        }
+        have_group = true;
+      }
+    } else if (key == "vn" || key == "vt" || key == "vp" || key == "s" || key == "usemtl" || key == "mtllib" ||
+               key == "l" || key == "p") {
+      continue;  // attributes irrelevant to geometry
+    } else {
+      fail(path, lineno, "unknown OBJ statement '" + key + "'");
+    }
+  }
+  if (in.bad()) fail(path, 0, "read error");
+  return soup;
+}
+
+}  // namespace
+
+PolygonSoup read_polygon_soup(const std::string& path) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path, 0, "no such file");
+  if (fs::is_directory(path, ec)) fail(path, 0, "is a directory, expected a mesh file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, 0, "cannot open file for reading");
+  if (fs::file_size(path, ec) == 0) fail(path, 0, "empty file");
+  const std::string ext = lower_extension(path);
+  PolygonSoup soup;
+  if (ext == ".obj") {
+    soup = read_obj(path, in);
+  } else if (ext == ".off" || ext == ".ply" || ext == ".stl") {
+    in.close();
+    std::vector<Point3> pts;
+    std::vector<std::vector<std::size_t>> faces;
+    bool ok = false;
+    try {
+      ok = CGAL::IO::read_polygon_soup(path, pts, faces, CGAL::parameters::verbose(false));
+    } catch (const std::exception& e) {
+      fail(path, 0, std::string("malformed ") + ext.substr(1) + " file (" + e.what() + ")");
+    }
+    if (!ok) fail(path, 0, "malformed " + ext.substr(1) + " file");
+    for (const auto& q : pts) {
+      std::array<double, 3> a{q.x(), q.y(), q.z()};
+      validate_point(path, 0, a);
+      soup.points.push_back(a);
+    }
+    for (auto& f : faces) {
+      if (f.size() < 3) fail(path, 0, "face with fewer than 3 vertices");
+      for (auto i : f)
+        if (i >= soup.points.size()) fail(path, 0, "face index out of range");
+    }
+    soup.faces = std::move(faces);
+  } else {
+    fail(path, 0, "unknown mesh format '" + ext + "' (expected .obj, .off, .ply or .stl)");
+  }
+  if (soup.points.empty()) fail(path, 0, "no vertices");
+  if (soup.faces.empty()) fail(path, 0, "no faces");
+  return soup;
+}
+
+namespace {
+
+Mesh soup_to_mesh(const std::string& path, const std::string& what, const std::vector<std::array<double, 3>>& points,
+                  const std::vector<std::vector<std::size_t>>& in_faces) {
+  // Keep only the referenced points, in first-reference order.
+  std::vector<long> remap(points.size(), -1);
+  std::vector<Point3> pts;
+  auto faces = in_faces;
+  for (auto& f : faces)
+    for (auto& i : f) {
+      if (remap[i] < 0) {
+        remap[i] = long(pts.size());
+        pts.emplace_back(points[i][0], points[i][1], points[i][2]);
+      }
+      i = std::size_t(remap[i]);
+    }
+  // STL and some exporters duplicate vertices per face; merging exact duplicates is lossless.
+  PMP::merge_duplicate_points_in_polygon_soup(pts, faces);
+  for (auto& f : faces) {
+    std::vector<std::size_t> g(f);
+    std::sort(g.begin(), g.end());
+    if (std::adjacent_find(g.begin(), g.end()) != g.end()) fail(path, 0, what + "face with a repeated vertex");
+  }
+  if (!PMP::is_polygon_soup_a_polygon_mesh(faces)) {
+    if (!PMP::orient_polygon_soup(pts, faces) || !PMP::is_polygon_soup_a_polygon_mesh(faces))
+      fail(path, 0, what + "faces do not form a 2-manifold surface (non-manifold edges or vertices)");
+  }
+  Mesh mesh;
+  PMP::polygon_soup_to_polygon_mesh(pts, faces, mesh);
+  return mesh;
+}
+
+}  // namespace
+
+Mesh read_mesh(const std::string& path) {
+  PolygonSoup soup = read_polygon_soup(path);
+  return soup_to_mesh(path, "", soup.points, soup.faces);
+}
+
+std::vector<std::pair<std::string, Mesh>> read_mesh_objects(const std::string& path) {
+  PolygonSoup soup = read_polygon_soup(path);
+  std::vector<std::pair<std::string, Mesh>> out;
+  if (soup.group_names.size() <= 1) {
+    out.emplace_back(path, soup_to_mesh(path, "", soup.points, soup.faces));
+    return out;
+  }
+  std::vector<std::vector<std::vector<std::size_t>>> groups(soup.group_names.size());
+  for (std::size_t f = 0; f < soup.faces.size(); ++f) groups[soup.face_group[f]].push_back(soup.faces[f]);
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    if (groups[g].empty()) continue;
+    const std::string name = path + "#" + soup.group_names[g];
+    out.emplace_back(name, soup_to_mesh(path, "object '" + soup.group_names[g] + "': ", soup.points, groups[g]));
+  }
+  return out;
+}
+
+std::vector<std::pair<std::string, Mesh>> read_mesh_set(const std::vector<std::string>& inputs) {
+  std::vector<std::pair<std::string, Mesh>> out;
+  for (const auto& file : expand_inputs(inputs))
+    for (auto& m : read_mesh_objects(file)) out.push_back(std::move(m));
+  return out;
+}
+
+std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
+  std::vector<std::string> out;
+  for (const auto& in : inputs) {
+    std::error_code ec;
+    if (!fs::exists(in, ec)) fail(in, 0, "no such file or directory");
+    if (fs::is_directory(in, ec)) {
+      std::vector<std::string> files;
+      for (const auto& e : fs::directory_iterator(in, ec)) {
+        if (!e.is_regular_file()) continue;
+        std::string ext = lower_extension(e.path().string());
+        if (ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl") files.push_back(e.path().string());
+      }
+      if (ec) fail(in, 0, "cannot list directory (" + ec.message() + ")");
+      if (files.empty()) fail(in, 0, "directory holds no mesh files (.obj .off .ply .stl)");
+      std::sort(files.begin(), files.end());
+      // A `dcshell shell` output directory: shells.obj repeats shell_NNN.obj for viewers.
+      auto is_shell_file = [](const std::string& f) { return fs::path(f).filename().string().rfind("shell_", 0) == 0; };
+      if (std::any_of(files.begin(), files.end(), is_shell_file))
+        files.erase(std::remove_if(files.begin(), files.end(),
+                                   [](const std::string& f) { return fs::path(f).filename() == "shells.obj"; }),
+                    files.end());
+      out.insert(out.end(), files.begin(), files.end());
+    } else {
+      out.push_back(in);
+    }
+  }
+  return out;
+}
+
+}  // namespace dcshell

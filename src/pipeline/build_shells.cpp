@@ -1,0 +1,234 @@
+// The DC-shell pipeline (see build_shells.h).
+#include "dcshell/build_shells.h"
+
+#include <algorithm>
+#include <chrono>
+#include <map>
+#include <numeric>
+
+#include "dcshell/convex_hull.h"
+#include "dcshell/exact_polytope.h"
+#include "dcshell/overlaps.h"
+#include "dcshell/polytope_clip.h"
+#include "dcshell/union_volume.h"
+
+namespace dcshell {
+
+namespace {
+
+class StageClock {
+ public:
+  explicit StageClock(std::vector<StageTime>& out) : out_(out), t_(std::chrono::steady_clock::now()) {}
+  void lap(const std::string& stage) {
+    auto now = std::chrono::steady_clock::now();
+    out_.push_back({stage, std::chrono::duration<double>(now - t_).count()});
+    t_ = now;
+  }
+
+ private:
+  std::vector<StageTime>& out_;
+  std::chrono::steady_clock::time_point t_;
+};
+
+struct Pair {
+  std::size_t i, j;          // part indices, i < j
+  const Overlap* overlap;    // C_i ∩ C_j
+  ConvexPolytope region;     // the same in doubles
+  CutPlane plane;            // part i keeps normal·x <= offset
+};
+
+// Parts whose hull lies (almost) entirely inside another's are absorbed by it. Smaller parts are
+// decided first; a container that is itself absorbed later passes its parts on.
+std::vector<AbsorbedPart> absorb_nested(const std::vector<Overlap>& overlaps, const std::vector<double>& vol,
+                                        double fraction) {
+  const std::size_t n = vol.size();
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  // Ascending volume; among equal volumes (duplicates) the later part goes first, so the
+  // earlier one is kept.
+  std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return vol[a] != vol[b] ? vol[a] < vol[b] : a > b;
+  });
+  std::vector<long> container(n, -1);
+  std::vector<double> inside(n, 0.0);
+  std::vector<char> decided(n, 0);
+  for (std::size_t i : order) {
+    decided[i] = 1;
+    double best = 0;
+    long best_j = -1;
+    for (const auto& o : overlaps) {
+      if (o.i != i && o.j != i) continue;
+      std::size_t j = o.i == i ? o.j : o.i;
+      if (decided[j] || vol[i] <= 0) continue;  // only a part not yet absorbed can contain i
+      double f = o.volume / vol[i];
+      if (f > best) best = f, best_j = long(j);
+    }
+    if (best_j >= 0 && best >= fraction) container[i] = best_j, inside[i] = std::min(best, 1.0);
+  }
+  std::vector<AbsorbedPart> out;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (container[i] < 0) continue;
+    std::size_t c = std::size_t(container[i]);
+    while (container[c] >= 0) c = std::size_t(container[c]);
+    out.push_back({i, c, inside[i]});
+  }
+  return out;
+}
+
+}  // namespace
+
+ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt) {
+  ShellResult res;
+  StageClock clock(res.times);
+  auto progress = [&](const std::string& s, std::size_t d, std::size_t t) {
+    if (opt.progress) opt.progress(s, d, t);
+  };
+  const std::size_t n = parts.size();
+
+  // --- hulls (optionally simplified/regularised before cutting, as the paper does)
+  std::vector<ExactPolytope> original(n), hull(n);
+  std::vector<Mesh> hull_mesh(n);
+  RemeshOptions remesh_opt;
+  remesh_opt.iterations = opt.simplify_iterations;
+  remesh_opt.max_volume_increase = opt.max_volume_increase;
+  for (std::size_t i = 0; i < n; ++i) {
+    progress("hulls", i, n);
+    original[i] = exact_hull(parts[i].points, int(i));
+    hull_mesh[i] = convex_hull_mesh(parts[i].points);
+    if (opt.simplify_iterations > 0) hull_mesh[i] = remesh_convex_shell(hull_mesh[i], std::vector<CutPlane>{}, remesh_opt);
+    hull[i] = opt.simplify_iterations > 0 ? exact_hull(mesh_points(hull_mesh[i]), int(i)) : original[i];
+  }
+  clock.lap("hulls");
+
+  // --- overlaps and nesting
+  std::vector<Overlap> overlaps = find_overlaps(hull);
+  std::vector<double> vol(n);
+  for (std::size_t i = 0; i < n; ++i) vol[i] = approximate_volume(hull[i]);
+  res.absorbed = absorb_nested(overlaps, vol, opt.absorb_fraction);
+  std::vector<char> active(n, 1);
+  for (const auto& a : res.absorbed) active[a.part] = 0;
+  std::vector<Pair> pairs;
+  for (const auto& o : overlaps)
+    if (active[o.i] && active[o.j]) pairs.push_back({o.i, o.j, &o, to_double(o.region), CutPlane{}});
+  res.overlapping_pairs = pairs.size();
+  std::vector<ConvexPolytope> hull_d(n);
+  for (std::size_t i = 0; i < n; ++i) hull_d[i] = to_double(hull[i]);
+  // Pair indices touching each part, for the interference terms and the sweeps.
+  std::vector<std::vector<std::size_t>> pairs_of(n);
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    pairs_of[pairs[p].i].push_back(p);
+    pairs_of[pairs[p].j].push_back(p);
+  }
+  clock.lap("overlaps");
+
+  // --- cut planes, one per overlapping pair
+  auto other = [&](const Pair& p, std::size_t part) { return p.i == part ? p.j : p.i; };
+  auto oriented_for = [&](const Pair& p, std::size_t part) { return p.i == part ? p.plane : p.plane.flipped(); };
+  auto make_problem = [&](std::size_t p, ConvexPolytope a, ConvexPolytope b) {
+    CutProblem prob;
+    prob.a = std::move(a);
+    prob.b = std::move(b);
+    prob.overlap = pairs[p].region;
+    // Interference (Eq. 7): the regions each side shares with its other neighbours.
+    for (std::size_t q : pairs_of[pairs[p].i])
+      if (q != p) prob.interference_a.push_back(pairs[q].region);
+    for (std::size_t q : pairs_of[pairs[p].j])
+      if (q != p) prob.interference_b.push_back(pairs[q].region);
+    return prob;
+  };
+  auto pair_options = [&](std::size_t p) {
+    CutOptions c = opt.cut;
+    c.seed = opt.cut.seed * 1000003u + p;  // independent, reproducible streams per pair
+    return c;
+  };
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    progress("cut planes", p, pairs.size());
+    pairs[p].plane = fit_cut_plane(make_problem(p, hull_d[pairs[p].i], hull_d[pairs[p].j]), pair_options(p)).plane;
+  }
+  clock.lap("cut planes");
+
+  // --- refinement sweeps: independently optimal planes over-trim where 3+ hulls meet
+  const bool volume_driven = opt.cut.method == CutMethod::exact || opt.cut.method == CutMethod::full;
+  if (volume_driven) {
+    double scale = 0;
+    for (std::size_t i = 0; i < n; ++i) scale += active[i] ? vol[i] : 0;
+    auto trimmed_except = [&](std::size_t part, std::size_t skip) {
+      ConvexPolytope c = hull_d[part];
+      for (std::size_t q : pairs_of[part])
+        if (q != skip && !c.empty()) c = clip(c, oriented_for(pairs[q], part), -2);
+      return c;
+    };
+    for (int s = 0; s < opt.max_sweeps; ++s) {
+      double gain = 0;
+      for (std::size_t p = 0; p < pairs.size(); ++p) {
+        progress("sweep " + std::to_string(s + 1), p, pairs.size());
+        if (pairs_of[pairs[p].i].size() + pairs_of[pairs[p].j].size() <= 2) continue;  // nothing else trims them
+        ConvexPolytope a = trimmed_except(pairs[p].i, p), b = trimmed_except(pairs[p].j, p);
+        if (a.empty() || b.empty()) continue;
+        CutProblem prob = make_problem(p, std::move(a), std::move(b));
+        CutResult cur = evaluate_cut_plane(prob, pairs[p].plane, opt.cut.lambda);
+        CutResult cand = fit_cut_plane(prob, pair_options(p));
+        if (cand.objective < cur.objective - 1e-12 * scale) {
+          gain += cur.objective - cand.objective;
+          pairs[p].plane = cand.plane;
+        }
+      }
+      res.sweeps_run = s + 1;
+      if (gain <= 1e-7 * scale) break;
+    }
+  }
+  clock.lap("sweeps");
+
+  // --- exact trim and certified rounding
+  for (std::size_t i = 0; i < n; ++i) {
+    if (!active[i]) continue;
+    progress("trim", i, n);
+    Shell sh;
+    sh.part = i;
+    std::vector<CutPlane> keep;
+    for (std::size_t q : pairs_of[i]) {
+      sh.cuts.push_back({oriented_for(pairs[q], i), other(pairs[q], i)});
+      keep.push_back(sh.cuts.back().plane);
+    }
+    sh.mesh = trim_shell(hull[i], keep, &sh.trim);
+    if (sh.mesh.number_of_faces() == 0) {
+      res.vanished.push_back(i);
+      continue;
+    }
+    for (const auto& a : res.absorbed)
+      if (a.container == i) sh.absorbed.push_back(a.part);
+    res.shells.push_back(std::move(sh));
+  }
+  clock.lap("trim");
+
+  // --- simplify and regularise the shells, keeping cut planes and every contact
+  if (opt.simplify_iterations > 0) {
+    std::vector<Mesh> meshes;
+    for (const auto& s : res.shells) meshes.push_back(s.mesh);
+    std::vector<ShellConstraints> cons = neighbour_constraints(meshes);
+    for (std::size_t k = 0; k < res.shells.size(); ++k) {
+      progress("remesh", k, res.shells.size());
+      auto& s = res.shells[k];
+      for (const auto& c : s.cuts) cons[k].cut_planes.push_back(c.plane);
+      s.mesh = remesh_convex_shell(s.mesh, cons[k], remesh_opt, &s.remesh);
+      s.remeshed = true;
+    }
+  }
+  clock.lap("remesh");
+
+  // --- certification of exactly what will be written, and the metric
+  std::vector<Mesh> meshes;
+  for (const auto& s : res.shells) meshes.push_back(s.mesh);
+  res.certification = certify(meshes);
+  for (std::size_t k = 0; k < res.shells.size(); ++k) {
+    res.shells[k].volume = res.certification.meshes[k].volume;
+    res.shells_volume += res.shells[k].volume;
+  }
+  clock.lap("certify");
+  res.union_volume = union_volume(original).value;
+  res.volume_loss = res.union_volume > 0 ? (res.union_volume - res.shells_volume) / res.union_volume : 0.0;
+  clock.lap("volume");
+  return res;
+}
+
+}  // namespace dcshell

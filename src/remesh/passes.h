@@ -1,0 +1,46 @@
+// Private to the remesh module: one simplification pass and one smoothing sweep over a mesh,
+// sharing state across passes so that work is redone only where the mesh changed (every
+// LP/QP is an exact solve: they are the cost).
+#pragma once
+#include <map>
+
+#include "dcshell/regularise.h"
+#include "dcshell/simplify.h"
+#include "remesh/star.h"
+
+namespace dcshell::remesh_detail {
+
+struct Candidate {
+  bool ok = false;
+  double cost = 0;  ///< added volume
+  Point3 w;
+};
+
+class Workspace {
+ public:
+  explicit Workspace(Mesh& mesh);
+  ~Workspace();
+  Workspace(const Workspace&) = delete;
+  Workspace& operator=(const Workspace&) = delete;
+
+  Mesh& mesh;
+  double volume;  ///< current volume (floating point, updated per change)
+
+  /// One progressive-hull pass: collapses (cheapest first) while they fit `options`; with
+  /// options.single_pass, at most one collapse per neighbourhood.
+  std::size_t simplify_pass(const ShellConstraints& c, const SimplifyOptions& options, SimplifyStats& st);
+  /// One constrained-smoothing sweep over all vertices.
+  std::size_t regularise_sweep(const std::vector<Point3>& enclose, const ShellConstraints& c, double max_volume,
+                               RegulariseStats& st);
+
+ private:
+  void touched(const Star& s, V w);  // the stars of w and of its ring changed
+  Candidate edge_candidate(H h, const ShellConstraints& c, bool fresh);
+  Mesh::Property_map<V, unsigned> stamp_;    // bumped whenever the vertex's star changes
+  Mesh::Property_map<V, unsigned> settled_;  // stamp at which smoothing last left it in place
+  struct Cached { unsigned su, sv; Candidate c; };
+  std::map<std::pair<V, V>, Cached> cache_;  // by edge (min, max)
+  bool fatter_only_ = false;                 // the cache's candidates were filtered so
+};
+
+}  // namespace dcshell::remesh_detail

@@ -1,0 +1,200 @@
+// Remesh driver: alternating progressive-hull simplification and constrained smoothing, and the
+// constraints a set of existing shells imposes on each other (see dcshell/remesh.h).
+#include "dcshell/remesh.h"
+
+#include <CGAL/Exact_rational.h>
+
+#include <cmath>
+
+#include "dcshell/certify.h"
+#include "dcshell/convex_hull.h"
+#include "dcshell/error.h"
+#include "dcshell/fatness.h"
+#include "dcshell/regularise.h"
+#include "remesh/passes.h"
+
+namespace dcshell {
+namespace {
+
+using namespace remesh_detail;
+
+// Share of the volume budget simplification may spend (smoothing may use all of it). Measured on
+// the shared models: per unit of volume, collapses raise fatness far more than smoothing does
+// (smoothing must move original hull vertices outward), so simplification may use it all.
+constexpr double kSimplifyShare = 1.0;
+
+std::size_t triangle_count(const Mesh& m) {
+  std::size_t n = 0;
+  for (auto f : m.faces()) n += m.degree(f) - 2;
+  return n;
+}
+
+// Every point on or below every face plane of the convex mesh `hull` (exact).
+bool encloses(const Mesh& hull, const std::vector<Point3>& points) {
+  for (auto f : hull.faces()) {
+    auto h = hull.halfedge(f);
+    const Point3 &a = hull.point(hull.source(h)), &b = hull.point(hull.target(h)), &c = hull.point(hull.target(hull.next(h)));
+    for (const Point3& p : points)
+      if (CGAL::orientation(a, b, c, p) == CGAL::POSITIVE) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints, const RemeshOptions& options,
+                         RemeshStats* stats) {
+  if (options.iterations < 0) throw InputError("remesh: iterations must be >= 0");
+  if (!(options.max_volume_increase >= 0) || !std::isfinite(options.max_volume_increase))
+    throw InputError("remesh: max volume increase must be a finite number >= 0");
+  const ConvexityVerdict verdict = check_convexity(shell);
+  if (!verdict.ok()) throw InputError("remesh: shell is not a closed outward convex polyhedron: " + verdict.reason);
+  const std::vector<Point3> original = mesh_points(shell);
+  for (const Point3& p : original)
+    if (!constraints.satisfied_by(p)) throw InputError("remesh: shell does not satisfy its own constraint planes");
+
+  // The hull of the vertices is the same polytope, triangulated and without non-extreme points.
+  Mesh m = convex_hull_mesh(original);
+  const double v0 = mesh_volume(m);
+  const std::size_t faces0 = triangle_count(shell);
+  const int n = options.iterations;
+  const double r = options.max_volume_increase;
+  RemeshStats st;
+  {
+    Workspace ws(m);
+    SimplifyStats sst;
+    RegulariseStats rst;
+    SimplifyOptions so;
+    so.max_volume = v0 * (1 + kSimplifyShare * r);
+    so.target_faces = options.target_faces;
+    so.single_pass = true;
+    so.fatter_only = true;
+    const double max_volume = v0 * (1 + r);
+    for (int it = 1; it <= n; ++it) {
+      const std::size_t c = ws.simplify_pass(constraints, so, sst);
+      const std::size_t mv = ws.regularise_sweep(original, constraints, max_volume, rst);
+      if (options.on_iteration) options.on_iteration(it, m);
+      if (c == 0 && mv == 0) {  // converged: later iterations would change nothing
+        if (options.on_iteration)
+          for (int k = it + 1; k <= n; ++k) options.on_iteration(k, m);
+        break;
+      }
+    }
+    st.collapses = sst.collapses;
+    st.moves = rst.moves;
+  }
+  m.collect_garbage();
+
+  // Exactly convex whatever happened above; every invariant is re-checked on the final doubles,
+  // and the input is returned unchanged (as its hull) if one fails.
+  Mesh out = convex_hull_mesh(mesh_points(m));
+  bool ok = !out.is_empty() && triangle_count(out) <= std::max(faces0, triangle_count(m)) &&
+            mesh_volume(out) <= v0 * (1 + r) * (1 + 1e-12) && encloses(out, original);
+  for (auto v : out.vertices()) ok = ok && constraints.satisfied_by(out.point(v));
+  if (!ok) {
+    out = convex_hull_mesh(original);
+    st.collapses = st.moves = 0;
+  }
+  if (stats) {
+    st.faces_before = faces0;
+    st.faces_after = triangle_count(out);
+    st.fatness_before = weighted_fatness(shell);
+    st.fatness_after = weighted_fatness(out);
+    st.volume_before = verdict.volume;
+    st.volume_after = mesh_volume(out);
+    *stats = st;
+  }
+  return out;
+}
+
+Mesh remesh_convex_shell(const Mesh& shell, const std::vector<CutPlane>& keep_inside, const RemeshOptions& options,
+                         RemeshStats* stats) {
+  ShellConstraints c;
+  c.cut_planes = keep_inside;
+  return remesh_convex_shell(shell, c, options, stats);
+}
+
+namespace {
+
+struct Separator {
+  bool found = false;
+  double gap = -1;          // smallest distance of the other shell's vertices to the plane
+  std::size_t contact = 0;  // vertices of the other shell exactly on the plane (a shared face)
+  std::array<Point3, 3> face;
+};
+
+// The best face plane of `owner` with every vertex of `other` on or above it (exact).
+Separator best_face_separator(const Mesh& owner, const std::vector<Point3>& other) {
+  Separator best;
+  for (auto f : owner.faces()) {
+    auto h = owner.halfedge(f);
+    const Point3 &a = owner.point(owner.source(h)), &b = owner.point(owner.target(h)),
+                 &c = owner.point(owner.target(owner.next(h)));
+    const Eigen::Vector3d na = (vec(b) - vec(a)).cross(vec(c) - vec(a));
+    if (!(na.norm() > 0)) continue;
+    const Eigen::Vector3d u = na.normalized();
+    double gap = std::numeric_limits<double>::infinity();
+    std::size_t contact = 0;
+    bool sep = true;
+    for (const Point3& q : other) {
+      const CGAL::Orientation o = CGAL::orientation(a, b, c, q);
+      if (o == CGAL::NEGATIVE) { sep = false; break; }
+      contact += o == CGAL::COPLANAR;
+      gap = std::min(gap, u.dot(vec(q) - vec(a)));
+    }
+    if (!sep) continue;
+    gap = std::max(gap, 0.0);
+    if (!best.found || gap > best.gap || (gap == best.gap && contact > best.contact))
+      best = {true, gap, contact, {a, b, c}};
+  }
+  return best;
+}
+
+// n·x <= d for every point, exactly (sign = +1), or >= d (sign = -1).
+bool all_on_side(const std::vector<Point3>& pts, const CutPlane& p) {
+  for (const Point3& x : pts) {
+    using Q = CGAL::Exact_rational;
+    const Q e = Q(p.normal.x()) * Q(x.x()) + Q(p.normal.y()) * Q(x.y()) + Q(p.normal.z()) * Q(x.z()) - Q(p.offset);
+    if (e > 0) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<ShellConstraints> neighbour_constraints(const std::vector<Mesh>& shells,
+                                                    std::vector<std::pair<std::size_t, std::size_t>>* unseparated) {
+  std::vector<ShellConstraints> out(shells.size());
+  std::vector<std::vector<Point3>> pts;
+  for (const Mesh& m : shells) pts.push_back(mesh_points(m));
+  for (std::size_t i = 0; i < shells.size(); ++i)
+    for (std::size_t j = i + 1; j < shells.size(); ++j) {
+      Separator si = best_face_separator(shells[i], pts[j]), sj = best_face_separator(shells[j], pts[i]);
+      std::size_t owner = i, other = j;
+      if (!si.found && !sj.found) {
+        if (unseparated) unseparated->push_back({i, j});
+        continue;
+      }
+      if (!si.found || (sj.found && (sj.gap > si.gap || (sj.gap == si.gap && sj.contact > si.contact)))) {
+        std::swap(si, sj);
+        std::swap(owner, other);
+      }
+      // With a gap, the plane half-way across it (double coefficients) leaves both shells room
+      // to grow; it is used only if both shells are exactly on their sides of it.
+      if (si.gap > 0) {
+        const auto& f = si.face;
+        const Eigen::Vector3d u = (vec(f[1]) - vec(f[0])).cross(vec(f[2]) - vec(f[0])).normalized();
+        const CutPlane mid{u, u.dot(vec(f[0])) + 0.5 * si.gap};
+        if (all_on_side(pts[owner], mid) && all_on_side(pts[other], mid.flipped())) {
+          out[owner].cut_planes.push_back(mid);
+          out[other].cut_planes.push_back(mid.flipped());
+          continue;
+        }
+      }
+      out[owner].face_planes.push_back(si.face);
+      out[other].face_planes.push_back({si.face[0], si.face[2], si.face[1]});
+    }
+  return out;
+}
+
+}  // namespace dcshell

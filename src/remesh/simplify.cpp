@@ -1,0 +1,230 @@
+// Progressive-hull simplification (see dcshell/simplify.h).
+#include "dcshell/simplify.h"
+
+#include <CGAL/boost/graph/Euler_operations.h>
+
+#include <algorithm>
+#include <queue>
+
+#include "dcshell/fatness.h"
+#include "remesh/passes.h"
+
+namespace dcshell {
+namespace {
+
+using namespace remesh_detail;
+
+// LP margins in local units (a fraction of the edge's scale): the LP's optimum lies on some of
+// its planes, and a margin keeps the rounded point on the right side of them.
+constexpr double kMargin = 1e-9;
+
+// A removed end point is a free position when it lies exactly on the plane of every face around
+// the other end point (a flat neighbourhood): no volume is added.
+bool is_flat_target(const Mesh& m, const Star& s, V target) {
+  for (F f : s.faces) {
+    H h = m.halfedge(f);
+    const V a = m.source(h), b = m.target(h), c = m.target(m.next(h));
+    if (a == target || b == target || c == target) continue;
+    if (CGAL::orientation(m.point(a), m.point(b), m.point(c), m.point(target)) != CGAL::COPLANAR) return false;
+  }
+  return true;
+}
+
+// Area-weighted fatness of the faces a replacement removes, and of the cone that replaces them.
+double local_fatness_star(const Mesh& m, const Star& s) {
+  double fa = 0, a = 0;
+  for (F f : s.faces) {
+    H h = m.halfedge(f);
+    const Point3 &p = m.point(m.source(h)), &q = m.point(m.target(h)), &r = m.point(m.target(m.next(h)));
+    const double area = std::sqrt(CGAL::squared_area(p, q, r));
+    fa += area * triangle_fatness(p, q, r);
+    a += area;
+  }
+  return a > 0 ? fa / a : 0;
+}
+
+double local_fatness_cone(const Mesh& m, const Star& s, const Point3& w) {
+  double fa = 0, a = 0;
+  for (std::size_t i = 0; i < s.ring.size(); ++i) {
+    const Point3 &q = m.point(s.ring[i]), &r = m.point(s.ring[(i + 1) % s.ring.size()]);
+    const double area = std::sqrt(CGAL::squared_area(w, q, r));
+    fa += area * triangle_fatness(w, q, r);
+    a += area;
+  }
+  return a > 0 ? fa / a : 0;
+}
+
+Candidate best_position(const Mesh& m, const Star& s, const ShellConstraints& constraints, bool fatter_only) {
+  Candidate best;
+  if (!s.valid) return best;
+  for (V r : s.removed)
+    if (is_flat_target(m, s, r) && (!fatter_only || local_fatness_cone(m, s, m.point(r)) >= local_fatness_star(m, s)))
+      return {true, 0.0, m.point(r)};
+
+  const Eigen::Vector3d pu = vec(m.point(s.removed[0])), pv = vec(m.point(s.removed[1]));
+  Frame frame{0.5 * (pu + pv), 0.0};
+  for (V r : s.ring) frame.scale = std::max(frame.scale, (vec(m.point(r)) - frame.origin).norm());
+  if (!(frame.scale > 0)) return best;
+  // Rounding the result to doubles moves it by ~1e-16 of its magnitude: keep the margin above that.
+  const double margin = std::max(kMargin, 1e-13 * frame.origin.lpNorm<Eigen::Infinity>() / frame.scale);
+
+  // A star face and the face across a ring edge that lie in one plane (a flat region) pin the new
+  // vertex to that plane: their rows get no margin, or the LP would be infeasible.
+  const std::size_t nr = s.ring.size();
+  std::vector<F> flat_faces;
+  std::vector<char> flat_edge(nr, 0);
+  for (std::size_t i = 0; i < nr; ++i) {
+    const H h = m.halfedge(s.ring[i], s.ring[(i + 1) % nr]);
+    const Point3 &a = m.point(m.source(h)), &b = m.point(m.target(h)), &c = m.point(m.target(m.next(h)));
+    if (CGAL::orientation(a, b, c, m.point(s.across[i])) == CGAL::COPLANAR) {
+      flat_edge[i] = 1;
+      flat_faces.push_back(m.face(h));
+    }
+  }
+  auto is_flat = [&](F f) {
+    if (std::find(flat_faces.begin(), flat_faces.end(), f) != flat_faces.end()) return true;
+    H h = m.halfedge(f);  // coplanar with a flat face of the star
+    for (F g : flat_faces) {
+      H k = m.halfedge(g);
+      bool all = true;
+      for (int j = 0; j < 3; ++j, h = m.next(h))
+        all = all && CGAL::orientation(m.point(m.source(k)), m.point(m.target(k)), m.point(m.target(m.next(k))),
+                                       m.point(m.source(h))) == CGAL::COPLANAR;
+      if (all) return true;
+    }
+    return false;
+  };
+  std::vector<Row> rows;
+  Eigen::Vector3d objective = Eigen::Vector3d::Zero();
+  for (F f : s.faces) {
+    H h = m.halfedge(f);
+    const Point3 &a = m.point(m.source(h)), &b = m.point(m.target(h)), &c = m.point(m.target(m.next(h)));
+    add_below_row(a, c, b, frame, is_flat(f) ? 0 : margin, rows);  // on or above: each new tetrahedron adds volume
+    objective += (vec(b) - vec(a)).cross(vec(c) - vec(a));  // gradient of the added volume (x6)
+  }
+  for (std::size_t i = 0; i < nr; ++i)  // below the faces across the ring: convex there
+    add_below_row(m.point(s.ring[(i + 1) % nr]), m.point(s.ring[i]), m.point(s.across[i]), frame,
+                  flat_edge[i] ? 0 : margin, rows);
+  // The margin keeps the rounded optimum strictly on the right side of every other plane; in a
+  // flat region the exact check decides whether the rounded point stayed on the plane.
+  add_constraint_rows(constraints, frame, margin, rows);
+  if (auto y = solve_lp3(objective.normalized(), rows)) {
+    const Point3 w = pt(frame.to_world(*y));
+    if (fatter_only && local_fatness_cone(m, s, w) < local_fatness_star(m, s)) return best;
+    return {true, volume_change(m, s, w), w};
+  }
+  return best;
+}
+
+struct Entry {
+  double cost;
+  std::size_t h;  // halfedge index: deterministic tie break
+  V u, v;
+  unsigned su, sv;  // vertex stamps when computed
+  bool fresh;       // computed in this pass (not taken from the cache)
+  Point3 w;
+  bool operator>(const Entry& o) const { return cost != o.cost ? cost > o.cost : h > o.h; }
+};
+
+}  // namespace
+
+namespace remesh_detail {
+
+Workspace::Workspace(Mesh& m) : mesh(m), volume(mesh_volume(m)) {
+  stamp_ = mesh.add_property_map<V, unsigned>("v:remesh_stamp", 0).first;
+  settled_ = mesh.add_property_map<V, unsigned>("v:remesh_settled", ~0u).first;
+}
+
+Workspace::~Workspace() {
+  mesh.remove_property_map(stamp_);
+  mesh.remove_property_map(settled_);
+}
+
+void Workspace::touched(const Star& s, V w) {
+  ++stamp_[w];
+  for (V r : s.ring) ++stamp_[r];
+}
+
+Candidate Workspace::edge_candidate(H h, const ShellConstraints& c, bool fresh) {
+  V u = mesh.source(h), v = mesh.target(h);
+  const auto key = std::minmax(u, v);
+  const unsigned su = stamp_[key.first], sv = stamp_[key.second];
+  if (!fresh) {
+    auto it = cache_.find(key);
+    if (it != cache_.end() && it->second.su == su && it->second.sv == sv) return it->second.c;
+  }
+  Candidate cand = best_position(mesh, edge_star(mesh, h), c, fatter_only_);
+  cache_[key] = {su, sv, cand};
+  return cand;
+}
+
+std::size_t Workspace::simplify_pass(const ShellConstraints& constraints, const SimplifyOptions& options,
+                                     SimplifyStats& st) {
+  if (fatter_only_ != options.fatter_only) cache_.clear();
+  fatter_only_ = options.fatter_only;
+  std::vector<char> locked(mesh.number_of_vertices() + mesh.number_of_removed_vertices(), 0);  // indices stay valid: no garbage collection here
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  auto push_edge = [&](H h, bool fresh) {
+    const V u = mesh.source(h), v = mesh.target(h);
+    const Candidate c = edge_candidate(h, constraints, fresh);
+    if (!c.ok) { ++st.infeasible; return; }
+    queue.push({c.cost, std::size_t(h), u, v, stamp_[u], stamp_[v], fresh, c.w});
+  };
+  for (auto e : mesh.edges()) push_edge(mesh.halfedge(e), false);
+
+  std::size_t collapses = 0;
+  while (!queue.empty()) {
+    const Entry e = queue.top();
+    queue.pop();
+    const H h(static_cast<Mesh::size_type>(e.h));
+    if (mesh.is_removed(h) || mesh.source(h) != e.u || mesh.target(h) != e.v || stamp_[e.u] != e.su ||
+        stamp_[e.v] != e.sv || locked[e.u] || locked[e.v])
+      continue;  // stale: the neighbourhood changed since this entry was computed
+    if (volume + std::max(e.cost, 0.0) > options.max_volume) break;  // cheapest first: nothing else fits
+    if (mesh.number_of_faces() < options.target_faces + 2 || mesh.number_of_vertices() <= 4) break;
+    const Star s = edge_star(mesh, h);
+    if (!s.valid || !CGAL::Euler::does_satisfy_link_condition(mesh.edge(h), mesh) ||
+        !replacement_is_valid(mesh, s, e.w, {}, constraints)) {
+      // A cached position may predate a change two rings away: recompute it once.
+      if (!e.fresh) push_edge(h, true);
+      else ++st.rejected;
+      continue;
+    }
+    const double dv = volume_change(mesh, s, e.w);
+    if (volume + std::max(dv, 0.0) > options.max_volume) { ++st.rejected; continue; }
+    const V w = CGAL::Euler::collapse_edge(mesh.edge(h), mesh);
+    mesh.point(w) = e.w;
+    volume += dv;
+    ++collapses;
+    touched(s, w);
+    if (options.single_pass) {
+      locked[w] = 1;
+      for (V r : s.ring) locked[r] = 1;
+      continue;
+    }
+    std::vector<Mesh::Edge_index> todo;
+    for (V x : s.ring)
+      for (H o : CGAL::halfedges_around_source(x, mesh)) todo.push_back(mesh.edge(o));
+    std::sort(todo.begin(), todo.end());
+    todo.erase(std::unique(todo.begin(), todo.end()), todo.end());
+    for (auto ed : todo) push_edge(mesh.halfedge(ed), false);
+  }
+  st.collapses += collapses;
+  return collapses;
+}
+
+}  // namespace remesh_detail
+
+std::size_t simplify_progressive_hull(Mesh& mesh, const ShellConstraints& constraints, const SimplifyOptions& options,
+                                      SimplifyStats* stats) {
+  SimplifyStats local;
+  std::size_t n = 0;
+  {
+    remesh_detail::Workspace ws(mesh);
+    n = ws.simplify_pass(constraints, options, stats ? *stats : local);
+  }
+  mesh.collect_garbage();
+  return n;
+}
+
+}  // namespace dcshell

@@ -1,0 +1,190 @@
+// Local replacement bookkeeping and exact checks shared by simplification and regularisation.
+#include "remesh/star.h"
+
+#include <CGAL/Exact_rational.h>
+
+#include <algorithm>
+
+namespace dcshell::remesh_detail {
+namespace {
+
+// Outgoing halfedges of v, counter-clockwise seen from outside: face(h) = (v, target(h), next).
+std::vector<H> outgoing(const Mesh& m, V v) {
+  std::vector<H> out;
+  const H start = m.opposite(m.halfedge(v));  // halfedge(v) targets v
+  H h = start;
+  do {
+    out.push_back(h);
+    h = m.opposite(m.prev(h));
+  } while (h != start && out.size() <= m.number_of_halfedges());
+  return out;
+}
+
+// Fills `across` and the validity flag once ring and faces are known.
+void finish(const Mesh& m, Star& s) {
+  const std::size_t n = s.ring.size();
+  s.valid = n >= 3;
+  std::vector<V> sorted = s.ring;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end()) s.valid = false;  // link condition
+  for (V r : s.removed)
+    if (std::binary_search(sorted.begin(), sorted.end(), r)) s.valid = false;
+  if (!s.valid) return;
+  s.across.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    const H h = m.halfedge(s.ring[i], s.ring[(i + 1) % n]);  // ring[i] -> ring[i+1] lies in a star face
+    if (h == Mesh::null_halfedge()) { s.valid = false; return; }
+    s.across[i] = m.target(m.next(m.opposite(h)));
+  }
+  // A separating triangle: an across vertex that is a removed vertex or would close a second cone.
+  for (V a : s.across)
+    if (std::find(s.removed.begin(), s.removed.end(), a) != s.removed.end()) s.valid = false;
+}
+
+}  // namespace
+
+Star vertex_star(const Mesh& m, V v) {
+  Star s;
+  s.removed = {v};
+  for (H h : outgoing(m, v)) {
+    s.ring.push_back(m.target(h));
+    s.faces.push_back(m.face(h));
+  }
+  finish(m, s);
+  return s;
+}
+
+Star edge_star(const Mesh& m, H h) {
+  // Ring of u from v: [v, r1..rk]; ring of v from u: [u, s1..sl] with s1 = rk and sl = r1.
+  // The merged ring is r1..rk followed by s2..s(l-1).
+  Star s;
+  const V u = m.source(h), v = m.target(h);
+  s.removed = {u, v};
+  const auto ou = outgoing(m, u), ov = outgoing(m, v);
+  auto rot = [&](const std::vector<H>& out, V first) {
+    std::vector<V> r;
+    std::size_t k = 0;
+    while (k < out.size() && m.target(out[k]) != first) ++k;
+    for (std::size_t i = 0; i < out.size(); ++i) r.push_back(m.target(out[(k + i) % out.size()]));
+    return r;
+  };
+  const auto ru = rot(ou, v), rv = rot(ov, u);
+  for (std::size_t i = 1; i < ru.size(); ++i) s.ring.push_back(ru[i]);
+  for (std::size_t i = 2; i + 1 < rv.size(); ++i) s.ring.push_back(rv[i]);
+  for (H o : ou) s.faces.push_back(m.face(o));
+  for (H o : ov)
+    if (std::find(s.faces.begin(), s.faces.end(), m.face(o)) == s.faces.end()) s.faces.push_back(m.face(o));
+  finish(m, s);
+  if (s.valid && (ru.size() < 3 || rv.size() < 3 || ru.back() != rv[1] || ru[1] != rv.back())) s.valid = false;
+  return s;
+}
+
+void add_constraint_rows(const ShellConstraints& c, const Frame& f, double margin, std::vector<Row>& rows) {
+  for (const CutPlane& p : c.cut_planes) {
+    const double len = p.normal.norm();
+    if (!(len > 0)) continue;
+    const Eigen::Vector3d n = p.normal / len;
+    // n·(origin + s y) <= d/len - margin*s
+    rows.push_back({n, (p.offset / len - n.dot(f.origin)) / f.scale - margin});
+  }
+  for (const auto& t : c.face_planes) add_below_row(t[0], t[1], t[2], f, margin, rows);
+}
+
+void add_below_row(const Point3& p, const Point3& q, const Point3& r, const Frame& f, double margin,
+                   std::vector<Row>& rows) {
+  const Eigen::Vector3d a = vec(p), n = (vec(q) - a).cross(vec(r) - a);
+  const double len = n.norm();
+  if (!(len > 0)) return;
+  const Eigen::Vector3d u = n / len;
+  rows.push_back({u, u.dot(a - f.origin) / f.scale - margin});
+}
+
+bool replacement_is_valid(const Mesh& m, const Star& s, const Point3& w, const std::vector<Point3>& enclose,
+                          const ShellConstraints& constraints) {
+  if (!s.valid || !constraints.satisfied_by(w)) return false;
+  const std::size_t n = s.ring.size();
+  auto ringp = [&](std::size_t i) -> const Point3& { return m.point(s.ring[i % n]); };
+  // Cone faces: non-degenerate, every remaining vertex and the removed ones on or below.
+  for (std::size_t i = 0; i < n; ++i) {
+    const Point3 &a = ringp(i), &b = ringp(i + 1);
+    if (CGAL::collinear(w, a, b)) return false;
+    for (V x : m.vertices())
+      if (CGAL::orientation(w, a, b, m.point(x)) == CGAL::POSITIVE) return false;
+  }
+  // w on or below every face that stays.
+  for (F f : m.faces()) {
+    if (std::find(s.faces.begin(), s.faces.end(), f) != s.faces.end()) continue;
+    H h = m.halfedge(f);
+    if (CGAL::orientation(m.point(m.source(h)), m.point(m.target(h)), m.point(m.target(m.next(h))), w) ==
+        CGAL::POSITIVE)
+      return false;
+  }
+  // Points to enclose: only those in the box of the removed vertices and the ring can have left
+  // (the region given up lies in the hull of the old star), and the box test is exact.
+  if (!enclose.empty()) {
+    double lo[3], hi[3];
+    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = m.point(s.ring[0])[k];
+    auto grow = [&](const Point3& p) {
+      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+    };
+    for (V r : s.ring) grow(m.point(r));
+    for (V r : s.removed) grow(m.point(r));
+    for (const Point3& o : enclose) {
+      bool in = true;
+      for (int k = 0; k < 3; ++k) in = in && o[k] >= lo[k] && o[k] <= hi[k];
+      if (!in) continue;
+      for (std::size_t i = 0; i < n; ++i)
+        if (CGAL::orientation(w, ringp(i), ringp(i + 1), o) == CGAL::POSITIVE) return false;
+    }
+  }
+  return true;
+}
+
+double volume_change(const Mesh& m, const Star& s, const Point3& w) {
+  const Eigen::Vector3d o = vec(w);
+  auto det = [&](const Point3& a, const Point3& b, const Point3& c) {
+    return (vec(a) - o).dot((vec(b) - o).cross(vec(c) - o)) / 6.0;
+  };
+  double d = 0;  // cone faces all contain w: zero relative to o = w
+  for (F f : s.faces) {
+    H h = m.halfedge(f);
+    d -= det(m.point(m.source(h)), m.point(m.target(h)), m.point(m.target(m.next(h))));
+  }
+  return d;
+}
+
+double mesh_volume(const Mesh& m) {
+  if (m.number_of_vertices() == 0) return 0;
+  const Eigen::Vector3d o = vec(m.point(*m.vertices().begin()));
+  double v = 0;
+  for (F f : m.faces()) {
+    H h = m.halfedge(f);
+    const Eigen::Vector3d a = vec(m.point(m.source(h))) - o, b = vec(m.point(m.target(h))) - o,
+                          c = vec(m.point(m.target(m.next(h)))) - o;
+    v += a.dot(b.cross(c));
+  }
+  return v / 6.0;
+}
+
+}  // namespace dcshell::remesh_detail
+
+namespace dcshell {
+
+bool ShellConstraints::satisfied_by(const Point3& x) const {
+  using Q = CGAL::Exact_rational;
+  for (const CutPlane& p : cut_planes) {
+    // Floating-point filter: the error of n·x - d is below this bound, so the sign is certain.
+    const double v = p.eval(remesh_detail::vec(x));
+    const double bound = 1e-14 * (std::abs(p.normal.x() * x.x()) + std::abs(p.normal.y() * x.y()) +
+                                  std::abs(p.normal.z() * x.z()) + std::abs(p.offset));
+    if (v < -bound) continue;
+    if (v > bound) return false;
+    const Q e = Q(p.normal.x()) * Q(x.x()) + Q(p.normal.y()) * Q(x.y()) + Q(p.normal.z()) * Q(x.z()) - Q(p.offset);
+    if (e > 0) return false;
+  }
+  for (const auto& t : face_planes)
+    if (CGAL::orientation(t[0], t[1], t[2], x) == CGAL::POSITIVE) return false;
+  return true;
+}
+
+}  // namespace dcshell

@@ -1,0 +1,532 @@
+// Cut tree -> net: Kruskal on facet groups, placement along the tree, gluing of edges whose two
+// sides land on each other, features; plus the heuristics' weights and the retry search.
+#include "dcshell/unfold.h"
+
+#include <CGAL/convex_hull_2.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iomanip>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <ostream>
+#include <queue>
+#include <stdexcept>
+#include <unordered_set>
+
+#include "dcshell/fold_check.h"
+#include "dcshell/net_overlap.h"
+#include "dcshell/unfold_ga.h"
+#include "unfold/unfold_internal.h"
+
+namespace dcshell {
+
+namespace {
+const std::vector<std::pair<UnfoldHeuristic, std::string>> kHeuristicNames = {
+    {UnfoldHeuristic::best, "best"},
+    {UnfoldHeuristic::steepest, "steepest"},
+    {UnfoldHeuristic::flat, "flat"},
+    {UnfoldHeuristic::min_perimeter, "min-perimeter"},
+    {UnfoldHeuristic::random, "random"},
+    {UnfoldHeuristic::ga, "ga"}};
+}  // namespace
+
+UnfoldHeuristic parse_unfold_heuristic(const std::string& s) {
+  for (auto& [h, n] : kHeuristicNames)
+    if (n == s) return h;
+  throw std::invalid_argument("unknown heuristic '" + s + "' (steepest|flat|min-perimeter|random|ga|best)");
+}
+std::string to_string(UnfoldHeuristic h) {
+  for (auto& [x, n] : kHeuristicNames)
+    if (x == h) return n;
+  return "?";
+}
+UnfoldObjective parse_unfold_objective(const std::string& s) {
+  if (s == "hull-area") return UnfoldObjective::hull_area;
+  if (s == "cut-length") return UnfoldObjective::cut_length;
+  throw std::invalid_argument("unknown objective '" + s + "' (hull-area|cut-length)");
+}
+std::string to_string(UnfoldObjective o) { return o == UnfoldObjective::hull_area ? "hull-area" : "cut-length"; }
+
+namespace unfold_detail {
+
+namespace {
+
+struct UnionFind {
+  std::vector<int> p;
+  explicit UnionFind(int n) : p(n) { std::iota(p.begin(), p.end(), 0); }
+  int find(int x) {
+    while (p[x] != x) x = p[x] = p[p[x]];
+    return x;
+  }
+  bool unite(int a, int b) {
+    a = find(a), b = find(b);
+    if (a == b) return false;
+    p[std::max(a, b)] = std::min(a, b);
+    return true;
+  }
+};
+
+using Vec2 = Eigen::Vector2d;
+
+// Third corner of a triangle whose first two corners (3D: A3, B3) are placed at A2, B2: to the
+// left of A2->B2, so the face keeps its counter-clockwise orientation (never mirrored).
+Vec2 place_third(const Vec2& A2, const Vec2& B2, const Eigen::Vector3d& A3, const Eigen::Vector3d& B3,
+                 const Eigen::Vector3d& C3) {
+  Eigen::Vector3d e = B3 - A3, w = C3 - A3;
+  double s = w.dot(e) / e.squaredNorm();
+  double h = w.cross(e).norm() / e.norm();
+  Vec2 d = B2 - A2;
+  Vec2 left(-d.y(), d.x());
+  return A2 + s * d + (h / d.norm()) * left;
+}
+
+double hull_area(const std::vector<Epick::Point_2>& pts) {
+  std::vector<Epick::Point_2> hull;
+  CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
+  double a = 0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const auto &p = hull[i], &q = hull[(i + 1) % hull.size()];
+    a += p.x() * q.y() - p.y() * q.x();
+  }
+  return std::abs(a) / 2;
+}
+
+std::vector<Epick::Point_2> net_points(const Net& net) {
+  std::vector<Epick::Point_2> pts;
+  pts.reserve(3 * net.corners.size());
+  for (auto& c : net.corners)
+    for (auto& p : c) pts.emplace_back(p.x(), p.y());
+  return pts;
+}
+
+}  // namespace
+
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b) {
+  // splitmix64 finaliser over the combined words: decorrelated streams per (seed, a, b).
+  auto mix = [](std::uint64_t z) {
+    z += 0x9e3779b97f4a7c15ULL;
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+  };
+  return mix(mix(mix(seed) ^ a) ^ (b * 0x632be59bd9b4e019ULL));
+}
+
+Eigen::Vector3d Rng::direction() {
+  for (;;) {
+    Eigen::Vector3d v(2 * uniform() - 1, 2 * uniform() - 1, 2 * uniform() - 1);
+    double n2 = v.squaredNorm();
+    if (n2 > 1e-6 && n2 <= 1) return v / std::sqrt(n2);
+  }
+}
+
+std::vector<char> folded_groups(const ShellGraph& g, const Genome& w) {
+  std::vector<int> order(g.num_groups());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return w[a] < w[b]; });
+  UnionFind uf(g.num_facets);
+  std::vector<char> folded(g.num_groups(), 0);
+  for (int gi : order) {
+    const auto& e = g.edges[g.group_edges[gi][0]];
+    folded[gi] = uf.unite(g.facet[e.f0], g.facet[e.f1]);
+  }
+  return folded;
+}
+
+std::uint64_t tree_hash(const std::vector<char>& folded) {
+  std::uint64_t h = 1469598103934665603ULL;
+  for (char c : folded) h = (h ^ static_cast<unsigned char>(c)) * 1099511628211ULL;
+  return h;
+}
+
+Decoded decode(const ShellGraph& g, const std::vector<char>& folded, bool first_overlap_only) {
+  const int nf = static_cast<int>(g.F.size());
+  const int ne = static_cast<int>(g.edges.size());
+  Decoded d;
+  d.tree_hash = tree_hash(folded);
+  Net& net = d.net;
+  net.shell_vertices = g.V;
+  net.shell_faces = g.F;
+  net.edges = g.edges;
+
+  // Face tree: flat edges first (every facet becomes a subtree), then the folded groups.
+  std::vector<char> in_tree(ne, 0);
+  UnionFind uf(nf);
+  for (int i : g.flat_edges) in_tree[i] = uf.unite(g.edges[i].f0, g.edges[i].f1);
+  for (int gi = 0; gi < g.num_groups(); ++gi)
+    if (folded[gi])
+      for (int i : g.group_edges[gi]) in_tree[i] = uf.unite(g.edges[i].f0, g.edges[i].f1);
+
+  // Breadth-first placement from face 0.
+  std::vector<std::vector<std::pair<int, int>>> adj(nf);
+  for (int i = 0; i < ne; ++i)
+    if (in_tree[i]) {
+      adj[g.edges[i].f0].push_back({g.edges[i].f1, i});
+      adj[g.edges[i].f1].push_back({g.edges[i].f0, i});
+    }
+  std::vector<std::array<Vec2, 3>> P(nf);
+  std::vector<int> rank(nf, -1);
+  net.parent.assign(nf, -1);
+  std::vector<int> order;
+  order.reserve(nf);
+  {
+    const auto& t = g.F[0];
+    Vec2 a(0, 0), b((g.V[t[1]] - g.V[t[0]]).norm(), 0);
+    P[0] = {a, b, place_third(a, b, g.V[t[0]], g.V[t[1]], g.V[t[2]])};
+    rank[0] = 0;
+    order.push_back(0);
+  }
+  for (std::size_t qi = 0; qi < order.size(); ++qi) {
+    int p = order[qi];
+    for (auto [f, ei] : adj[p]) {
+      if (rank[f] >= 0) continue;
+      rank[f] = static_cast<int>(order.size());
+      order.push_back(f);
+      net.parent[f] = p;
+      int k = 0;
+      while (g.face_edge[f][k] != ei) ++k;
+      const auto& t = g.F[f];
+      int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
+      auto pos_in_parent = [&](int v) {
+        for (int j = 0; j < 3; ++j)
+          if (g.F[p][j] == v) return P[p][j];
+        return Vec2(0, 0);
+      };
+      P[f][k] = pos_in_parent(a);
+      P[f][(k + 1) % 3] = pos_in_parent(b);
+      P[f][(k + 2) % 3] = place_third(P[f][k], P[f][(k + 1) % 3], g.V[a], g.V[b], g.V[c]);
+    }
+  }
+
+  // Glue: a non-tree edge that is flat, or a sibling of a folded group's tree edge, folds too
+  // when its two sides land on each other (they do exactly, up to rounding, on a convex shell).
+  auto corner = [&](int f, int v) {
+    int k = 0;
+    while (g.F[f][k] != v) ++k;
+    return k;
+  };
+  for (int i = 0; i < ne; ++i) {
+    auto& e = net.edges[i];
+    e.fold = in_tree[i];
+    if (in_tree[i]) continue;
+    int gi = g.edge_group[i];
+    if (gi >= 0 && !folded[gi]) continue;
+    double tol = 1e-7 * g.edge_length[i];
+    e.fold = (P[e.f0][corner(e.f0, e.v0)] - P[e.f1][corner(e.f1, e.v0)]).norm() <= tol &&
+             (P[e.f0][corner(e.f0, e.v1)] - P[e.f1][corner(e.f1, e.v1)]).norm() <= tol;
+  }
+
+  // Net vertices: corners joined across folds share one position (the earliest placed), so
+  // faces meeting along a fold touch exactly in the overlap test and in the written OBJ.
+  UnionFind cu(3 * nf);
+  for (int i = 0; i < ne; ++i) {
+    const auto& e = net.edges[i];
+    if (!e.fold) continue;
+    for (int v : {e.v0, e.v1}) cu.unite(3 * e.f0 + corner(e.f0, v), 3 * e.f1 + corner(e.f1, v));
+  }
+  std::vector<int> best(3 * nf, -1);
+  for (int f : order)
+    for (int k = 0; k < 3; ++k) {
+      int r = cu.find(3 * f + k);
+      if (best[r] < 0) best[r] = 3 * f + k;
+    }
+  net.corners.resize(nf);
+  for (int f = 0; f < nf; ++f)
+    for (int k = 0; k < 3; ++k) {
+      int src = best[cu.find(3 * f + k)];
+      net.corners[f][k] = P[src / 3][src % 3];
+    }
+
+  for (int i = 0; i < ne; ++i)
+    if (!net.edges[i].fold) d.metrics.cut_length += g.edge_length[i];
+  d.metrics.hull_area = hull_area(net_points(net));
+  d.metrics.overlapping_pairs = static_cast<int>(
+      find_net_overlaps(net, first_overlap_only ? 1 : std::numeric_limits<std::size_t>::max()).size());
+  return d;
+}
+
+void normalise_placement(Net& net) {
+  std::vector<Epick::Point_2> hull;
+  auto pts = net_points(net);
+  CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
+  if (hull.size() < 3) return;
+  // Minimum-area bounding rectangle: one side lies along a hull edge.
+  double best_area = std::numeric_limits<double>::infinity();
+  Eigen::Vector2d best_dir(1, 0);
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const auto &p = hull[i], &q = hull[(i + 1) % hull.size()];
+    Eigen::Vector2d u(q.x() - p.x(), q.y() - p.y());
+    if (u.norm() == 0) continue;
+    u.normalize();
+    double lo_u = 1e300, hi_u = -1e300, lo_v = 1e300, hi_v = -1e300;
+    for (auto& h : hull) {
+      double a = u.x() * h.x() + u.y() * h.y(), b = -u.y() * h.x() + u.x() * h.y();
+      lo_u = std::min(lo_u, a), hi_u = std::max(hi_u, a), lo_v = std::min(lo_v, b), hi_v = std::max(hi_v, b);
+    }
+    double area = (hi_u - lo_u) * (hi_v - lo_v);
+    if (area < best_area * (1 - 1e-12)) {
+      best_area = area;
+      best_dir = (hi_u - lo_u >= hi_v - lo_v) ? u : Eigen::Vector2d(-u.y(), u.x());
+    }
+  }
+  Eigen::Matrix2d R;
+  R << best_dir.x(), best_dir.y(), -best_dir.y(), best_dir.x();
+  Eigen::Vector2d lo(1e300, 1e300);
+  for (auto& c : net.corners)
+    for (auto& p : c) {
+      p = R * p;
+      lo = lo.cwiseMin(p);
+    }
+  for (auto& c : net.corners)
+    for (auto& p : c) p -= lo;
+}
+
+// ---- heuristics as group weights ----
+
+namespace {
+double steepness(const ShellGraph& g, int gi, const Eigen::Vector3d& c) {
+  Eigen::Vector3d d = g.V[g.group_ends[gi][1]] - g.V[g.group_ends[gi][0]];
+  double n = d.norm();
+  return n > 0 ? std::abs(c.dot(d)) / n : 0.0;
+}
+}  // namespace
+
+Genome steepest_edge_weights(const ShellGraph& g, const Eigen::Vector3d& c) {
+  // Steepest edge cut: every polytope vertex but the highest in direction c cuts along its
+  // steepest ascending polytope edge. Those cuts form a spanning tree of the vertices; giving
+  // them the largest weights makes Kruskal fold everything else.
+  Genome w(g.num_groups());
+  std::map<int, std::vector<int>> incident;
+  for (int gi = 0; gi < g.num_groups(); ++gi) {
+    w[gi] = steepness(g, gi, c);
+    incident[g.group_ends[gi][0]].push_back(gi);
+    incident[g.group_ends[gi][1]].push_back(gi);
+  }
+  auto higher = [&](int u, int v) {  // u above v, ties broken by index (generic direction)
+    double hu = c.dot(g.V[u]), hv = c.dot(g.V[v]);
+    return hu > hv || (hu == hv && u > v);
+  };
+  for (auto& [v, groups] : incident) {
+    int pick = -1;
+    double best = -1;
+    for (int gi : groups) {
+      int u = g.group_ends[gi][0] == v ? g.group_ends[gi][1] : g.group_ends[gi][0];
+      if (!higher(u, v)) continue;
+      double s = c.dot(g.V[u] - g.V[v]) / (g.V[u] - g.V[v]).norm();
+      if (s > best) best = s, pick = gi;
+    }
+    if (pick >= 0) w[pick] = 2;
+  }
+  return w;
+}
+
+Genome flat_tree_weights(const ShellGraph& g, const Eigen::Vector3d& c) {
+  // Flat spanning tree: the cut tree is the minimum spanning tree of the polytope edges
+  // weighted by steepness, i.e. cuts run as level as possible; Kruskal folds the steep ones.
+  Genome w(g.num_groups());
+  for (int gi = 0; gi < g.num_groups(); ++gi) w[gi] = -steepness(g, gi, c);
+  return w;
+}
+
+Genome min_perimeter_weights(const ShellGraph& g, Rng& rng, double jitter) {
+  // Minimum perimeter: the cut tree is a minimum spanning tree by length (long edges fold).
+  // Jitter and a random tie-break give other trees of about the same length on retries.
+  Genome w(g.num_groups());
+  for (int gi = 0; gi < g.num_groups(); ++gi)
+    w[gi] = -g.group_length[gi] * (1 + jitter * (rng.uniform() - 0.5) + 1e-9 * rng.uniform());
+  return w;
+}
+
+Genome random_weights(const ShellGraph& g, Rng& rng) {
+  Genome w(g.num_groups());
+  for (auto& x : w) x = rng.uniform();
+  return w;
+}
+
+double objective_score(const NetMetrics& m, const NetMetrics& ref, UnfoldObjective obj) {
+  double h = m.hull_area / std::max(ref.hull_area, 1e-300), c = m.cut_length / std::max(ref.cut_length, 1e-300);
+  double s = obj == UnfoldObjective::hull_area ? h + 0.01 * c : c + 0.01 * h;
+  return m.overlapping_pairs == 0 ? s : 1e6 + m.overlapping_pairs + s;
+}
+
+// ---- search ----
+
+namespace {
+
+Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std::uint64_t seed) {
+  Rng rng(mix_seed(seed, static_cast<std::uint64_t>(h), static_cast<std::uint64_t>(attempt)));
+  // The first direction is a fixed generic one, so the first net does not depend on the seed.
+  Eigen::Vector3d c = attempt == 0 ? Eigen::Vector3d(0.2137, 0.5318, 0.8193).normalized() : rng.direction();
+  switch (h) {
+    case UnfoldHeuristic::steepest: return steepest_edge_weights(g, c);
+    case UnfoldHeuristic::flat: return flat_tree_weights(g, c);
+    case UnfoldHeuristic::min_perimeter:
+      return attempt == 0 ? min_perimeter_weights(g, rng, 0.0) : min_perimeter_weights(g, rng, 0.05 * attempt);
+    default: return random_weights(g, rng);
+  }
+}
+
+int automatic_tries(int faces) { return std::clamp(150000 / std::max(faces, 1), 2, 64); }
+
+}  // namespace
+
+SearchResult search_heuristics(const ShellGraph& g, const UnfoldOptions& options) {
+  std::vector<UnfoldHeuristic> hs;
+  bool all = options.heuristic == UnfoldHeuristic::best || options.heuristic == UnfoldHeuristic::ga;
+  if (all)
+    hs = {UnfoldHeuristic::steepest, UnfoldHeuristic::min_perimeter, UnfoldHeuristic::flat, UnfoldHeuristic::random};
+  else
+    hs = {options.heuristic};
+  const int tries = options.tries > 0 ? options.tries : automatic_tries(static_cast<int>(g.F.size()));
+  // A single heuristic keeps retrying (up to 8x) until it finds an overlap-free net.
+  const int max_tries = all ? tries : 8 * tries;
+
+  SearchResult r;
+  std::unordered_set<std::uint64_t> seen;
+  double best_score = std::numeric_limits<double>::infinity();
+  for (int attempt = 0; attempt < max_tries; ++attempt) {
+    if (attempt >= tries && r.best >= 0 && r.evaluated[r.best].metrics.overlapping_pairs == 0) break;
+    for (auto h : hs) {
+      Genome w = heuristic_genome(g, h, attempt, options.seed);
+      auto folded = folded_groups(g, w);
+      if (!seen.insert(tree_hash(folded)).second) continue;
+      Decoded d = decode(g, folded, true);
+      r.evaluated.push_back({std::move(w), d.metrics, to_string(h)});
+      double s = objective_score(d.metrics, r.evaluated.front().metrics, options.objective);
+      if (s < best_score) best_score = s, r.best = static_cast<int>(r.evaluated.size()) - 1;
+    }
+  }
+  return r;
+}
+
+Net finish_net(const ShellGraph& g, const Genome& genome, NetMetrics* metrics) {
+  Decoded d = decode(g, folded_groups(g, genome), false);
+  Net placed = d.net;
+  normalise_placement(d.net);
+  NetMetrics m = d.metrics;
+  m.overlapping_pairs = static_cast<int>(find_net_overlaps(d.net).size());
+  // Rotation rounds coordinates; keep the unrotated net in the (unseen so far) case where that
+  // rounding alone creates an overlap.
+  if (m.overlapping_pairs > d.metrics.overlapping_pairs) {
+    d.net = std::move(placed);
+    m = d.metrics;
+  }
+  if (metrics) *metrics = m;
+  return std::move(d.net);
+}
+
+}  // namespace unfold_detail
+
+using namespace unfold_detail;
+
+namespace {
+
+Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions* ga, UnfoldStats* stats,
+                std::vector<double>* ga_history) {
+  auto t0 = std::chrono::steady_clock::now();
+  ShellGraph g = build_shell_graph(mesh, options.flat_angle);
+  UnfoldStats st;
+  st.faces = static_cast<int>(g.F.size());
+  st.facets = g.num_facets;
+  st.convex = g.convex;
+  st.reflex_edges = g.reflex_edges;
+  st.max_reflex_angle = g.max_reflex_angle;
+
+  SearchResult search = search_heuristics(g, options);
+  st.attempts = static_cast<int>(search.evaluated.size());
+  const NetMetrics& ref = search.evaluated.front().metrics;
+  // Candidates in score order: the GA's best (when run), then the heuristics' nets.
+  std::vector<Candidate> ranked;
+  if (ga) {
+    int pop = std::max(4, ga->population);
+    int evals = ga->evaluations > 0 ? ga->evaluations
+                                    : std::clamp(static_cast<int>(2000000 / std::max<std::size_t>(g.F.size(), 1)), 100, 2000);
+    GaRun run = run_ga(g, options, evals, pop, search);
+    st.attempts += run.evaluations;
+    if (ga_history) *ga_history = run.best_score_per_generation;
+    ranked.push_back(run.best);
+  }
+  {
+    std::vector<int> idx(search.evaluated.size());
+    std::iota(idx.begin(), idx.end(), 0);
+    std::stable_sort(idx.begin(), idx.end(), [&](int a, int b) {
+      return objective_score(search.evaluated[a].metrics, ref, options.objective) <
+             objective_score(search.evaluated[b].metrics, ref, options.objective);
+    });
+    for (int i : idx) ranked.push_back(search.evaluated[i]);
+  }
+  st.first = ref;
+  // The first overlap-free candidate whose folding path is verified; else the best one.
+  const int checks = options.fold_candidates <= 0 ? 0 : g.F.size() > 5000 ? 0 : options.fold_candidates;
+  Net net;
+  bool have = false;
+  for (std::size_t i = 0; i < ranked.size() && st.fold_checks < checks; ++i) {
+    if (ranked[i].metrics.overlapping_pairs != 0) break;
+    NetMetrics m;
+    Net candidate = finish_net(g, ranked[i].genome, &m);
+    if (m.overlapping_pairs != 0) continue;
+    FoldCheckResult fc = check_folding(candidate);
+    ++st.fold_checks;
+    if (!have || fc.verified) {
+      net = std::move(candidate), st.result = m, st.fold = fc, st.heuristic = ranked[i].heuristic, have = true;
+      if (fc.verified) break;
+    }
+  }
+  if (!have) {
+    net = finish_net(g, ranked.front().genome, &st.result);
+    st.heuristic = ranked.front().heuristic;
+  }
+  st.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (stats) *stats = st;
+  return net;
+}
+
+}  // namespace
+
+Net unfold_convex_mesh(const Mesh& mesh, const UnfoldOptions& options, UnfoldStats* stats) {
+  if (options.heuristic == UnfoldHeuristic::ga) {
+    GaOptions ga;
+    return unfold_impl(mesh, options, &ga, stats, nullptr);
+  }
+  return unfold_impl(mesh, options, nullptr, stats, nullptr);
+}
+
+Net unfold_ga(const Mesh& mesh, const UnfoldOptions& options, const GaOptions& ga, UnfoldStats* stats,
+              std::vector<double>* history) {
+  UnfoldOptions o = options;
+  o.heuristic = UnfoldHeuristic::ga;
+  return unfold_impl(mesh, o, &ga, stats, history);
+}
+
+NetMetrics net_metrics(const Net& net) {
+  NetMetrics m;
+  for (const auto& e : net.edges)
+    if (!e.fold) m.cut_length += (net.shell_vertices[e.v1] - net.shell_vertices[e.v0]).norm();
+  m.hull_area = hull_area(net_points(net));
+  m.overlapping_pairs = static_cast<int>(find_net_overlaps(net).size());
+  return m;
+}
+
+void write_net_obj(const Net& net, std::ostream& out) {
+  // Net vertices: corners with the same shell vertex at bitwise the same point are one vertex.
+  std::map<std::tuple<int, double, double>, int> index;
+  std::vector<Eigen::Vector2d> verts;
+  std::vector<std::array<int, 3>> faces(net.corners.size());
+  for (std::size_t f = 0; f < net.corners.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      const auto& p = net.corners[f][k];
+      auto [it, fresh] = index.emplace(std::make_tuple(net.shell_faces[f][k], p.x(), p.y()), static_cast<int>(verts.size()));
+      if (fresh) verts.push_back(p);
+      faces[f][k] = it->second;
+    }
+  out << "# dcshell net" << (net.name.empty() ? "" : " " + net.name) << ": " << faces.size()
+      << " faces in shell order, corners in shell order, z = 0\n";
+  out << std::setprecision(17);
+  for (auto& v : verts) out << "v " << v.x() << " " << v.y() << " 0\n";
+  for (auto& f : faces) out << "f " << f[0] + 1 << " " << f[1] + 1 << " " << f[2] + 1 << "\n";
+}
+
+}  // namespace dcshell

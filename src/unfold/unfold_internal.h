@@ -1,0 +1,117 @@
+// Internals shared by the unfolder, the heuristics and the genetic search: the shell's dual
+// graph grouped into facets, and the decoding of per-group weights into a net.
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <array>
+#include <cstdint>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "dcshell/net.h"
+#include "dcshell/unfold.h"
+
+namespace dcshell::unfold_detail {
+
+/// The shell as triangles with its edges, facets (regions joined by flat edges) and groups
+/// (all edges between the same two facets: a polytope edge, possibly subdivided).
+struct ShellGraph {
+  std::vector<Eigen::Vector3d> V;
+  std::vector<std::array<int, 3>> F;
+  std::vector<Net::Edge> edges;               ///< fold = false everywhere here
+  std::vector<std::array<int, 3>> face_edge;  ///< edge index of face f's side k (corner k -> k+1)
+  std::vector<double> edge_length;
+  std::vector<int> facet;                     ///< per face
+  int num_facets = 0;
+  std::vector<int> edge_group;                ///< per edge; -1 for a flat edge
+  std::vector<std::vector<int>> group_edges;  ///< per group, its edges
+  std::vector<std::array<int, 2>> group_ends; ///< chain end vertices of each group
+  std::vector<double> group_length;
+  std::vector<int> flat_edges;
+  bool convex = true;
+  int reflex_edges = 0;
+  double max_reflex_angle = 0;
+  double scale = 1;  ///< bounding-box diagonal
+
+  int num_groups() const { return static_cast<int>(group_edges.size()); }
+};
+
+/// Builds the graph from triangles. Throws InputError (message without file name) when the
+/// triangles are not a closed oriented 2-manifold of genus 0, or a face is degenerate.
+ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::array<int, 3>> F,
+                             double flat_angle);
+ShellGraph build_shell_graph(const Mesh& mesh, double flat_angle);
+
+/// A candidate: per-group fold weights. Kruskal folds groups in increasing weight (ties by
+/// index) after all flat edges, so the groups with the largest weights are the ones cut.
+using Genome = std::vector<double>;
+
+/// Decodes a genome into a net (unnormalised placement) and its features.
+/// `first_overlap_only`: stop the overlap search at the first pair (faster; count is 0 or 1).
+struct Decoded {
+  Net net;
+  NetMetrics metrics;
+  std::uint64_t tree_hash = 0;  ///< identifies the set of folded groups
+};
+std::vector<char> folded_groups(const ShellGraph& g, const Genome& w);
+std::uint64_t tree_hash(const std::vector<char>& folded);
+Decoded decode(const ShellGraph& g, const std::vector<char>& folded, bool first_overlap_only);
+
+/// Rotates the net so that its minimum-area bounding rectangle is axis-aligned (longer side
+/// along x) and moves it to the positive quadrant. Shared corners stay bitwise shared.
+void normalise_placement(Net& net);
+
+/// Deterministic random numbers (same bytes on every platform): mt19937_64 and own mappings.
+struct Rng {
+  std::mt19937_64 gen;
+  explicit Rng(std::uint64_t seed) : gen(seed) {}
+  double uniform() { return static_cast<double>(gen() >> 11) * 0x1.0p-53; }  // [0,1)
+  int below(int n) { return static_cast<int>(uniform() * n); }
+  Eigen::Vector3d direction();  ///< uniform on the sphere (rejection from the cube)
+};
+std::uint64_t mix_seed(std::uint64_t seed, std::uint64_t a, std::uint64_t b = 0);
+
+/// Schlickenrieder's heuristics as group weights.
+Genome steepest_edge_weights(const ShellGraph& g, const Eigen::Vector3d& c);
+Genome flat_tree_weights(const ShellGraph& g, const Eigen::Vector3d& c);
+Genome min_perimeter_weights(const ShellGraph& g, Rng& rng, double jitter);
+Genome random_weights(const ShellGraph& g, Rng& rng);
+
+/// Scalar fitness to minimise: weighted normalised features; overlapping nets rank after all
+/// overlap-free ones, fewer overlaps first.
+double objective_score(const NetMetrics& m, const NetMetrics& ref, UnfoldObjective obj);
+
+}  // namespace dcshell::unfold_detail
+
+namespace dcshell::unfold_detail {
+
+/// One evaluated cut tree.
+struct Candidate {
+  Genome genome;
+  NetMetrics metrics;  ///< overlapping_pairs is 0 or 1 (the search stops at the first overlap)
+  std::string heuristic;
+};
+
+/// Heuristics with retries. `evaluated` holds every distinct tree tried, in trial order;
+/// `first` is the first one (steepest edge, first direction) and the normalisation reference.
+struct SearchResult {
+  std::vector<Candidate> evaluated;
+  int best = -1;  ///< index of the best by the objective (overlap-free first), -1 if none tried
+};
+SearchResult search_heuristics(const ShellGraph& g, const UnfoldOptions& options);
+
+/// Genetic search seeded with the search's candidates; returns the best genome found (the
+/// search's best when nothing better turns up) and appends the best score per generation.
+struct GaRun {
+  Candidate best;
+  int evaluations = 0;
+  std::vector<double> best_score_per_generation;
+};
+GaRun run_ga(const ShellGraph& g, const UnfoldOptions& options, int evaluations, int population,
+             const SearchResult& seeds);
+
+/// The final net of a genome: decoded, normalised, overlaps counted in full.
+Net finish_net(const ShellGraph& g, const Genome& genome, NetMetrics* metrics);
+
+}  // namespace dcshell::unfold_detail

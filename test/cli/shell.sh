@@ -1,0 +1,66 @@
+#!/bin/bash
+# dcshell check / volume-loss / shell from the command line: exit codes, one-line errors naming
+# the file, atomic output, byte-identical reruns, and the written files certifying on their own.
+set -u
+BIN=$1; SRC=$2; SHARED=$3
+T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
+fail() { echo "FAIL: $*"; exit 1; }
+
+# shell on every bundled example: certified, and the files as written pass `check`.
+for ex in three_boxes nested split_cube snowman.obj bars/bars_30; do
+  "$BIN" shell -q --out "$T/o" "$SRC/data/$ex" || fail "shell $ex exit $?"
+  "$BIN" check -q "$T"/o/shell_*.obj > /dev/null || fail "check of written shells of $ex"
+  grep -q '"certified": true' "$T/o/report.json" || fail "report of $ex not certified"
+  rm -rf "$T/o"
+done
+
+# Byte-identical reruns (timings left out of the report).
+for m in lsf svm exact full; do
+  "$BIN" shell -q --no-timings --method $m --out "$T/a" "$SRC/data/snowman.obj" || fail "run a $m"
+  "$BIN" shell -q --no-timings --method $m --out "$T/b" "$SRC/data/snowman.obj" || fail "run b $m"
+  diff -r "$T/a" "$T/b" > /dev/null || fail "method $m not deterministic"
+  rm -rf "$T/a" "$T/b"
+done
+
+# Existing non-empty output is refused without --force; an input is never overwritten.
+mkdir -p "$T/busy"; echo x > "$T/busy/keep"
+"$BIN" shell -q --out "$T/busy" "$SRC/data/three_boxes" 2> "$T/err"; [ $? -eq 2 ] || fail "non-empty out dir accepted"
+[ "$(cat "$T/busy/keep")" = x ] || fail "out dir modified"
+cp -r "$SRC/data/three_boxes" "$T/in"
+"$BIN" shell -q --force --out "$T/in" "$T/in" 2> "$T/err"; [ $? -eq 2 ] || fail "input dir overwritten"
+[ -f "$T/in/box_a.obj" ] || fail "input lost"
+
+# Bad input: one line naming the file, exit 2, nothing written.
+printf 'v 0 0 0\nv 1 0 nan\n' > "$T/bad.obj"
+"$BIN" shell -q --out "$T/never" "$T/bad.obj" 2> "$T/err"; rc=$?
+[ $rc -eq 2 ] || fail "bad input exit $rc"
+[ "$(wc -l < "$T/err")" -eq 1 ] || fail "error is not one line: $(cat "$T/err")"
+grep -q "bad.obj:2" "$T/err" || fail "error does not name file and line: $(cat "$T/err")"
+[ ! -e "$T/never" ] || fail "output written for bad input"
+ls -a "$T" | grep -q '^\.never' && fail "temporary directory left behind"
+"$BIN" check "$T/missing.obj" 2> "$T/err"; [ $? -eq 2 ] || fail "missing file exit"
+grep -q "missing.obj" "$T/err" || fail "missing file not named"
+: > "$T/empty.obj"
+"$BIN" volume-loss --parts "$T/empty.obj" --shells "$T/empty.obj" 2> "$T/err"; [ $? -eq 2 ] || fail "empty file exit"
+grep -q "empty.obj: empty file" "$T/err" || fail "empty file message: $(cat "$T/err")"
+
+# check: cubes sharing a face are certified (0), overlapping ones are not (1).
+cube() { printf 'v %s 0 0\nv %s 0 0\nv %s 1 0\nv %s 1 0\nv %s 0 1\nv %s 0 1\nv %s 1 1\nv %s 1 1\nf 1 4 3 2\nf 5 6 7 8\nf 1 2 6 5\nf 2 3 7 6\nf 3 4 8 7\nf 4 1 5 8\n' $1 $2 $2 $1 $1 $2 $2 $1; }
+cube 0 1 > "$T/c0.obj"; cube 1 2 > "$T/c1.obj"; cube 0.5 1.5 > "$T/c2.obj"
+"$BIN" check -q "$T/c0.obj" "$T/c1.obj" > /dev/null || fail "face-sharing cubes not certified"
+"$BIN" check -q "$T/c0.obj" "$T/c2.obj" > "$T/rep.json"; [ $? -eq 1 ] || fail "overlapping cubes certified"
+grep -q '"volume": 0.5' "$T/rep.json" || fail "overlap volume not 0.5"
+
+# volume-loss of shells against their parts.
+"$BIN" shell -q --out "$T/s" "$SRC/data/three_boxes" || fail "shell three_boxes"
+"$BIN" volume-loss -q --parts "$SRC/data/three_boxes" --shells "$T/s" > "$T/vl.json" || fail "volume-loss exit"
+grep -q '"union_volume": 4.96875' "$T/vl.json" || fail "union volume of three boxes: $(grep union_volume "$T/vl.json")"
+
+# Shared data: the paper's own shells are refused, naming pairs.
+if [ -d "$SHARED/paper-output" ]; then
+  for d in "$SHARED"/paper-output/*/; do
+    "$BIN" check -q "$d" > "$T/p.json"; [ $? -eq 1 ] || fail "paper output $d certified"
+    grep -q '"ratio_to_smaller"' "$T/p.json" || fail "no overlapping pair named for $d"
+  done
+fi
+echo "ok"

@@ -1,0 +1,136 @@
+// Exact convex core: hull, clipping, intersection, volumes, union, certification.
+#include <boost/test/unit_test.hpp>
+
+#include <CGAL/Polygon_mesh_processing/orientation.h>
+#include <cmath>
+
+#include "dcshell/certify.h"
+#include "dcshell/convex_hull.h"
+#include "dcshell/exact_polytope.h"
+#include "dcshell/overlaps.h"
+#include "dcshell/union_volume.h"
+#include "test_util.h"
+
+using namespace dcshell;
+using dcshell::test::box_points;
+
+BOOST_AUTO_TEST_SUITE(exact_core)
+
+BOOST_AUTO_TEST_CASE(unit_cubes_offset_by_half_overlap_in_exactly_half) {
+  ExactPolytope a = exact_hull(box_points(0, 0, 0, 1, 1, 1));
+  ExactPolytope b = exact_hull(box_points(0.5, 0, 0, 1.5, 1, 1));
+  BOOST_TEST(a.faces.size() == 6u);  // coplanar hull triangles merged into squares
+  BOOST_TEST(exact_volume(a) == ExactRational(1));
+  ExactPolytope x = intersect(a, b);
+  BOOST_REQUIRE(!x.empty());
+  BOOST_TEST(exact_volume(x) == ExactRational(1) / 2);
+  auto iv = volume_interval(x);
+  BOOST_TEST(iv.inf() <= 0.5);
+  BOOST_TEST(iv.sup() >= 0.5);
+}
+
+BOOST_AUTO_TEST_CASE(regular_tetrahedron_volume_is_exact) {
+  // Alternate corners of the cube [-1,1]^3: edge 2*sqrt(2), volume 8/3.
+  std::vector<Point3> t{{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}};
+  BOOST_TEST(exact_volume(exact_hull(t)) == ExactRational(8) / 3);
+  BOOST_TEST(check_convexity(convex_hull_mesh(t)).volume == 8.0 / 3, boost::test_tools::tolerance(1e-15));
+}
+
+BOOST_AUTO_TEST_CASE(clip_keeps_negative_side_and_creates_cap) {
+  ExactPolytope cube = exact_hull(box_points(0, 0, 0, 1, 1, 1));
+  // x + y + z <= 1: the corner tetrahedron, volume 1/6.
+  CutPlane p{Eigen::Vector3d(1, 1, 1), 1.0};
+  ExactPolytope t = clip(cube, exact_plane(p), 7);
+  BOOST_TEST(exact_volume(t) == ExactRational(1) / 6);
+  BOOST_TEST(t.vertices.size() == 4u);
+  int caps = 0;
+  for (const auto& f : t.faces) caps += f.tag == 7;
+  BOOST_TEST(caps == 1);
+  // A plane through a face keeps everything; its opposite keeps nothing.
+  BOOST_TEST(exact_volume(clip(cube, exact_plane({Eigen::Vector3d(1, 0, 0), 1.0}), 1)) == ExactRational(1));
+  BOOST_TEST(clip(cube, exact_plane({Eigen::Vector3d(-1, 0, 0), -1.0}), 1).empty());
+}
+
+BOOST_AUTO_TEST_CASE(touching_boxes_do_not_overlap) {
+  std::vector<ExactPolytope> p{exact_hull(box_points(0, 0, 0, 1, 1, 1)), exact_hull(box_points(1, 0, 0, 2, 1, 1)),
+                               exact_hull(box_points(1, 1, 1, 2, 2, 2)), exact_hull(box_points(0, 1, 0, 1, 2, 1))};
+  BOOST_TEST(find_overlaps(p).empty());
+  BOOST_TEST(union_volume(p).value == 4.0);
+}
+
+BOOST_AUTO_TEST_CASE(union_of_known_boxes) {
+  // Three boxes pairwise overlapping with a common triple region; by hand:
+  // |A|=2, |B|=1.5*1.75*1=2.625, |C|=1.25*1*1.25=1.5625
+  // A∩B=[1,2]x[.25,1]x[.25,1]=0.5625; A∩C=[.5,1.75]x[.5,1]x[0,.75]=0.46875
+  // B∩C=[1,1.75]x[.5,1.5]x[.25,.75]=0.375; A∩B∩C=[1,1.75]x[.5,1]x[.25,.75]=0.1875
+  std::vector<ExactPolytope> p{exact_hull(box_points(0, 0, 0, 2, 1, 1)), exact_hull(box_points(1, 0.25, 0.25, 2.5, 2, 1.25)),
+                               exact_hull(box_points(0.5, 0.5, -0.5, 1.75, 1.5, 0.75))};
+  double expect = 2 + 2.625 + 1.5625 - 0.5625 - 0.46875 - 0.375 + 0.1875;
+  UnionVolume u = union_volume(p);
+  BOOST_TEST(u.value == expect, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(u.terms == 7u);
+  BOOST_TEST(u.max_clique == 3u);
+  BOOST_TEST(u.error_bound <= 1e-12 * expect);
+  // Forcing the exact fallback gives the same value.
+  UnionVolume e = union_volume(p, -1.0);
+  BOOST_TEST(e.exact_fallback);
+  BOOST_TEST(e.value == expect);
+}
+
+BOOST_AUTO_TEST_CASE(nested_and_duplicated_polytopes) {
+  std::vector<ExactPolytope> p{exact_hull(box_points(0, 0, 0, 2, 2, 2)), exact_hull(box_points(0.5, 0.5, 0.5, 1, 1, 1)),
+                               exact_hull(box_points(0, 0, 0, 2, 2, 2))};
+  BOOST_TEST(union_volume(p).value == 8.0);
+  BOOST_TEST(find_overlaps(p).size() == 3u);
+}
+
+BOOST_AUTO_TEST_CASE(certify_accepts_cubes_sharing_a_face_and_rejects_overlap) {
+  std::vector<Mesh> m{convex_hull_mesh(box_points(0, 0, 0, 1, 1, 1)), convex_hull_mesh(box_points(1, 0, 0, 2, 1, 1))};
+  CertificationReport r = certify(m);
+  BOOST_TEST(r.certified());
+  m.push_back(convex_hull_mesh(box_points(0.5, 0, 0, 1.5, 1, 1)));
+  r = certify(m);
+  BOOST_TEST(!r.certified());
+  BOOST_REQUIRE(r.overlaps.size() == 2u);
+  BOOST_TEST(r.overlaps[0].a == 0u);
+  BOOST_TEST(r.overlaps[0].b == 2u);
+  BOOST_TEST(r.overlaps[0].volume == 0.5);
+  BOOST_TEST(r.overlaps[0].ratio_to_smaller == 0.5);
+}
+
+BOOST_AUTO_TEST_CASE(certify_sees_an_overlap_far_below_floating_tolerance) {
+  // Two boxes sharing the face x = 1 except that one vertex of the second pokes 2^-40 into the
+  // first: a tolerance-based check calls this touching; the exact check must not.
+  std::vector<Point3> b = box_points(1, 0, 0, 2, 1, 1);
+  b[0] = Point3(1 - std::ldexp(1.0, -40), 0, 0);
+  std::vector<Mesh> m{convex_hull_mesh(box_points(0, 0, 0, 1, 1, 1)), convex_hull_mesh(b)};
+  CertificationReport r = certify(m);
+  BOOST_TEST(!r.certified());
+  BOOST_REQUIRE(r.overlaps.size() == 1u);
+  BOOST_TEST(r.overlaps[0].volume > 0.0);
+  BOOST_TEST(r.overlaps[0].volume < 1e-11);
+}
+
+BOOST_AUTO_TEST_CASE(convexity_verdicts) {
+  Mesh cube = convex_hull_mesh(box_points(0, 0, 0, 1, 1, 1));
+  BOOST_TEST(check_convexity(cube).ok());
+  // Push one vertex inward: closed, outward, not convex.
+  Mesh dent = cube;
+  for (auto v : dent.vertices())
+    if (dent.point(v) == Point3(1, 1, 1)) dent.point(v) = Point3(0.9, 0.9, 0.9);
+  ConvexityVerdict d = check_convexity(dent);
+  BOOST_TEST(d.closed);
+  BOOST_TEST(!d.convex);
+  // Reverse orientation: inward.
+  Mesh inv = cube;
+  CGAL::Polygon_mesh_processing::reverse_face_orientations(inv);
+  ConvexityVerdict i = check_convexity(inv);
+  BOOST_TEST(!i.ok());
+  BOOST_TEST(!i.outward);
+  // Open mesh.
+  Mesh open = cube;
+  open.remove_face(*open.faces().begin());
+  BOOST_TEST(!check_convexity(open).closed);
+}
+
+BOOST_AUTO_TEST_SUITE_END()

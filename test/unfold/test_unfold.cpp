@@ -1,0 +1,278 @@
+// Nets of the Platonic solids and the shared convex models: flat, one piece, overlap-free,
+// congruent with one orientation, glued only along shell edges; they fold back to the shell.
+#include <boost/test/unit_test.hpp>
+
+#include <map>
+#include <sstream>
+
+#include "dcshell/error.h"
+#include "dcshell/fold_check.h"
+#include "dcshell/net_overlap.h"
+#include "dcshell/read_mesh.h"
+#include "dcshell/unfold.h"
+#include "dcshell/unfold_ga.h"
+#include "unfold_test_util.h"
+
+using namespace dcshell;
+using namespace dcshell::test;
+
+namespace {
+
+// At t = 1 every copy of a shell vertex is back in one place, and the folded net is the shell up
+// to a rigid motion (pairwise distances of the shell vertices agree).
+void check_folds_back(const Net& net) {
+  auto faces = folded_faces(net, 1.0);
+  std::map<int, Eigen::Vector3d> where;
+  double size = 0;
+  for (auto& v : net.shell_vertices) size = std::max(size, v.norm());
+  for (std::size_t f = 0; f < faces.size(); ++f)
+    for (int k = 0; k < 3; ++k) {
+      int v = net.shell_faces[f][k];
+      auto [it, fresh] = where.emplace(v, faces[f][k]);
+      if (!fresh) BOOST_TEST_REQUIRE((it->second - faces[f][k]).norm() < 1e-7 * size);
+    }
+  for (auto& [a, pa] : where)
+    for (auto& [b, pb] : where) {
+      double d3 = (net.shell_vertices[a] - net.shell_vertices[b]).norm();
+      BOOST_TEST_REQUIRE(std::abs((pa - pb).norm() - d3) < 1e-7 * size);
+    }
+}
+
+void check_good_net(const Net& net, const std::string& what) {
+  BOOST_TEST_CONTEXT(what) {
+    auto c = check_net(net);
+    BOOST_TEST(c.ok(), c.problem);
+    BOOST_TEST(net.corners.size() == net.shell_faces.size());
+  }
+}
+
+const std::vector<UnfoldHeuristic> kHeuristics = {UnfoldHeuristic::steepest, UnfoldHeuristic::flat,
+                                                  UnfoldHeuristic::min_perimeter, UnfoldHeuristic::random,
+                                                  UnfoldHeuristic::best};
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(platonic_solids_unfold_and_fold_back) {
+  std::vector<std::pair<std::string, Mesh>> solids = {{"tetrahedron", tetrahedron()},   {"cube", cube_triangles()},
+                                                      {"octahedron", octahedron()},     {"dodecahedron", dodecahedron()},
+                                                      {"icosahedron", icosahedron()}};
+  for (auto& [name, mesh] : solids)
+    for (auto h : kHeuristics) {
+      UnfoldOptions o;
+      o.heuristic = h;
+      UnfoldStats st;
+      Net net = unfold_convex_mesh(mesh, o, &st);
+      check_good_net(net, name + " " + to_string(h));
+      BOOST_TEST(st.convex);
+      BOOST_TEST(st.result.overlapping_pairs == 0);
+      check_folds_back(net);
+      auto fc = check_folding(net);
+      BOOST_TEST(fc.verified, name << " " << to_string(h) << ": " << fc.message);
+    }
+}
+
+BOOST_AUTO_TEST_CASE(coplanar_triangles_are_never_cut_apart) {
+  // A unit cube cut along 7 cube edges: cut length 7, and the 6 diagonals are folds of angle 0.
+  for (auto h : kHeuristics) {
+    UnfoldOptions o;
+    o.heuristic = h;
+    UnfoldStats st;
+    Net net = unfold_convex_mesh(cube_triangles(), o, &st);
+    BOOST_TEST(st.facets == 6);
+    BOOST_TEST(st.result.cut_length == 7.0, boost::test_tools::tolerance(1e-12));
+    int flat_folds = 0;
+    for (auto& e : net.edges) flat_folds += e.fold && e.fold_angle == 0;
+    BOOST_TEST(flat_folds == 6);
+  }
+  // Dodecahedron: the pentagons' fan diagonals stay folded; cut tree has 19 polytope edges.
+  UnfoldStats st;
+  Net net = unfold_convex_mesh(dodecahedron(), {}, &st);
+  BOOST_TEST(st.facets == 12);
+  int cuts = 0;
+  for (auto& e : net.edges) cuts += !e.fold;
+  BOOST_TEST(cuts == 19);
+}
+
+BOOST_AUTO_TEST_CASE(net_edges_and_angles) {
+  Net net = unfold_convex_mesh(octahedron());
+  BOOST_TEST(net.edges.size() == 12u);
+  const double dihedral = std::acos(-1.0 / 3);  // octahedron interior dihedral
+  for (auto& e : net.edges) {
+    BOOST_TEST(e.fold_angle == M_PI - dihedral, boost::test_tools::tolerance(1e-12));
+    BOOST_TEST(e.mountain);
+  }
+  int folds = 0;
+  for (auto& e : net.edges) folds += e.fold;
+  BOOST_TEST(folds == 7);  // spanning tree of 8 faces
+}
+
+BOOST_AUTO_TEST_CASE(overlap_test_is_exact_and_allows_touching) {
+  using V = Eigen::Vector2d;
+  Triangle2 a{V(0, 0), V(1, 0), V(0, 1)};
+  BOOST_TEST(!triangle_interiors_overlap(a, {V(1, 0), V(0, 0), V(0, -1)}));  // shared edge
+  BOOST_TEST(!triangle_interiors_overlap(a, {V(1, 0), V(2, 0), V(1, 1)}));   // shared vertex
+  BOOST_TEST(!triangle_interiors_overlap(a, {V(0.5, 0.5), V(1, 1), V(0, 1)}));  // along part of an edge
+  BOOST_TEST(triangle_interiors_overlap(a, {V(0.2, 0.2), V(2, 0.2), V(0.2, 2)}));
+  BOOST_TEST(triangle_interiors_overlap(a, a));
+  BOOST_TEST(triangle_interiors_overlap(a, {V(0.1, 0.1), V(0.2, 0.1), V(0.1, 0.2)}));  // contained
+  BOOST_TEST(triangle_interiors_overlap(a, {V(0.5, -1), V(0.5, 1), V(0.5, 2)}));      // crossing segment
+  // Exactness: a vertex 1 ulp across the hypotenuse x + y = 1 overlaps; on it, it does not.
+  double x = 0.5, y = std::nextafter(0.5, 0.0);
+  BOOST_TEST(!triangle_interiors_overlap(a, {V(0.5, 0.5), V(2, 2), V(2, 0.5)}));
+  BOOST_TEST(triangle_interiors_overlap(a, {V(x, y), V(2, 2), V(2, 0.5)}));
+}
+
+BOOST_AUTO_TEST_CASE(hand_made_overlapping_net_is_detected) {
+  Net net = unfold_convex_mesh(icosahedron());
+  BOOST_TEST_REQUIRE(find_net_overlaps(net).empty());
+  // Move the leaf face's free corner onto the middle of the root face: an overlap appears.
+  Net bad = net;
+  int leaf = -1;
+  std::vector<int> children(net.corners.size(), 0);
+  for (int p : net.parent)
+    if (p >= 0) ++children[p];
+  for (int f = 0; f < static_cast<int>(children.size()) && leaf < 0; ++f)
+    if (children[f] == 0) leaf = f;
+  int other = leaf == 0 ? 1 : 0;
+  for (int g = 0; g < static_cast<int>(net.corners.size()); ++g)
+    if (g != leaf && net.parent[leaf] != g) other = g;
+  Eigen::Vector2d centre = (net.corners[other][0] + net.corners[other][1] + net.corners[other][2]) / 3;
+  Eigen::Vector2d shift = centre - (bad.corners[leaf][0] + bad.corners[leaf][1] + bad.corners[leaf][2]) / 3;
+  for (auto& p : bad.corners[leaf]) p += shift;
+  auto pairs = find_net_overlaps(bad);
+  BOOST_TEST_REQUIRE(!pairs.empty());
+  bool found = false;
+  for (auto& [f, g] : pairs) found |= (f == std::min(leaf, other) && g == std::max(leaf, other));
+  BOOST_TEST(found);
+  auto c = check_net(bad);
+  BOOST_TEST(!c.overlap_free);
+  BOOST_TEST(!c.folds_shared);  // the moved face no longer meets its parent along the fold
+
+  // A mirrored face is a defect even if it stays in place.
+  Net mirrored = net;
+  std::swap(mirrored.corners[leaf][1], mirrored.corners[leaf][2]);
+  BOOST_TEST(!check_net(mirrored).oriented);
+}
+
+BOOST_AUTO_TEST_CASE(fold_check_catches_a_constructed_collision) {
+  // A unit square base (2 triangles) with a flap hinged on its left and right sides. Each flap is
+  // 0.8 wide and folds up by 170 degrees over the base, so they cross before the end.
+  auto flap_net = [](double angle) {
+    Net n;
+    n.shell_vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-0.8, 0.5, 0}, {1.8, 0.5, 0}};
+    n.shell_faces = {{0, 1, 2}, {0, 2, 3}, {3, 4, 0}, {1, 5, 2}};
+    for (auto& t : n.shell_faces) {
+      std::array<Eigen::Vector2d, 3> c;
+      for (int k = 0; k < 3; ++k) c[k] = n.shell_vertices[t[k]].head<2>();
+      n.corners.push_back(c);
+    }
+    n.parent = {-1, 0, 1, 0};
+    auto edge = [](int v0, int v1, int f0, int f1, double a) {
+      Net::Edge e;
+      e.v0 = v0, e.v1 = v1, e.f0 = f0, e.f1 = f1, e.fold = true, e.fold_angle = a;
+      return e;
+    };
+    n.edges = {edge(0, 2, 0, 1, 0.0), edge(3, 0, 1, 2, angle), edge(1, 2, 0, 3, angle)};
+    return n;
+  };
+  const double deg = M_PI / 180;
+  // Folding "up" means towards +z: negative angles (the outside faces +z, convex folds go down).
+  auto ok = check_folding(flap_net(-80 * deg));
+  BOOST_TEST(ok.verified, ok.message);
+  auto bad = check_folding(flap_net(-170 * deg));
+  BOOST_TEST(!bad.verified);
+  BOOST_TEST(((bad.face_a == 2 && bad.face_b == 3) || (bad.face_a == 3 && bad.face_b == 2)));
+  BOOST_TEST(bad.t > 0.5);
+  BOOST_TEST(bad.t < 1.0);
+  // The reported state really is (or is about to be) a contact: the flaps are close there.
+  auto faces = folded_faces(flap_net(-170 * deg), bad.t);
+  BOOST_TEST(faces[2][1].z() > 0.0);
+}
+
+BOOST_AUTO_TEST_CASE(net_obj_lists_shell_faces_in_order) {
+  Net net = unfold_convex_mesh(cube_triangles());
+  std::ostringstream os;
+  write_net_obj(net, os);
+  std::istringstream is(os.str());
+  std::vector<Eigen::Vector2d> v;
+  std::vector<std::array<int, 3>> f;
+  std::string line;
+  while (std::getline(is, line)) {
+    std::istringstream ls(line);
+    std::string tag;
+    ls >> tag;
+    if (tag == "v") {
+      double x, y, z;
+      ls >> x >> y >> z;
+      BOOST_TEST(z == 0.0);
+      v.emplace_back(x, y);
+    } else if (tag == "f") {
+      std::array<int, 3> t;
+      ls >> t[0] >> t[1] >> t[2];
+      f.push_back(t);
+    }
+  }
+  BOOST_TEST_REQUIRE(f.size() == net.corners.size());
+  for (std::size_t i = 0; i < f.size(); ++i)
+    for (int k = 0; k < 3; ++k) BOOST_TEST((v[f[i][k] - 1] == net.corners[i][k]));  // round trip, exact
+  // Folds are shared vertices in the file: 12 triangles, 7 cut cube edges -> 14 net vertices.
+  BOOST_TEST(v.size() == 14u);
+}
+
+BOOST_AUTO_TEST_CASE(ga_is_reproducible_and_improves_on_the_first_net) {
+  UnfoldOptions o;
+  o.seed = 7;
+  GaOptions ga;
+  ga.evaluations = 400;
+  UnfoldStats s1, s2;
+  Mesh m = icosahedron();
+  Net a = unfold_ga(m, o, ga, &s1), b = unfold_ga(m, o, ga, &s2);
+  std::ostringstream oa, ob;
+  write_net_obj(a, oa);
+  write_net_obj(b, ob);
+  BOOST_TEST(oa.str() == ob.str());
+  BOOST_TEST(s1.result.overlapping_pairs == 0);
+  BOOST_TEST(s1.result.hull_area <= s1.first.hull_area);
+  check_good_net(a, "ga icosahedron");
+}
+
+BOOST_AUTO_TEST_CASE(non_convex_and_bad_meshes) {
+  // A cube with one corner pushed in: not convex, still unfolded (with a report).
+  Mesh dent = cube_triangles();
+  for (auto v : dent.vertices())
+    if (dent.point(v) == Point3(1, 1, 1)) dent.point(v) = Point3(0.6, 0.6, 0.6);
+  UnfoldStats st;
+  Net net = unfold_convex_mesh(dent, {}, &st);
+  BOOST_TEST(!st.convex);
+  BOOST_TEST(st.reflex_edges > 0);
+  BOOST_TEST(check_net(net).congruent);
+  // Open mesh: refused.
+  Mesh open = cube_triangles();
+  open.remove_face(*open.faces().begin());
+  open.collect_garbage();
+  BOOST_CHECK_THROW(unfold_convex_mesh(open), InputError);
+}
+
+BOOST_AUTO_TEST_CASE(shared_convex_models) {
+  if (!have_shared_data()) {
+    BOOST_TEST_MESSAGE("shared data absent: skipped");
+    return;
+  }
+  namespace fs = std::filesystem;
+  std::vector<std::string> files;
+  for (auto& e : fs::directory_iterator(shared_data() + "/convex"))
+    if (e.path().extension() == ".obj") files.push_back(e.path().string());
+  std::sort(files.begin(), files.end());
+  int tested = 0;
+  for (auto& file : files) {
+    Mesh m = read_mesh(file);
+    if (m.number_of_faces() > 5000) continue;  // the large ones are in tools/bench_unfold
+    UnfoldOptions o;
+    o.tries = m.number_of_faces() > 2000 ? 4 : 16;
+    UnfoldStats st;
+    Net net = unfold_convex_mesh(m, o, &st);
+    check_good_net(net, file);
+    ++tested;
+  }
+  BOOST_TEST(tested >= 29);  // all 34 but the 5 above 5,000 faces
+}

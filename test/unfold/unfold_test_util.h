@@ -1,0 +1,75 @@
+// Shapes and helpers for the unfold tests.
+#pragma once
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "dcshell/kernel.h"
+
+namespace dcshell::test {
+
+/// Mesh from vertex list and polygon loops (counter-clockwise seen from outside).
+inline Mesh make_mesh(const std::vector<std::array<double, 3>>& v, const std::vector<std::vector<int>>& faces) {
+  Mesh m;
+  std::vector<Mesh::Vertex_index> vi;
+  for (auto& p : v) vi.push_back(m.add_vertex(Point3(p[0], p[1], p[2])));
+  for (auto& f : faces) {
+    std::vector<Mesh::Vertex_index> loop;
+    for (int i : f) loop.push_back(vi[i]);
+    m.add_face(loop);
+  }
+  return m;
+}
+
+inline Mesh tetrahedron() { return make_mesh({{1, 1, 1}, {1, -1, -1}, {-1, 1, -1}, {-1, -1, 1}}, {{0, 1, 2}, {0, 3, 1}, {0, 2, 3}, {1, 3, 2}}); }
+
+/// Unit cube [0,1]^3 as 12 triangles (the diagonals are flat edges).
+inline Mesh cube_triangles() {
+  std::vector<std::array<double, 3>> v = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 1}, {1, 0, 1}, {1, 1, 1}, {0, 1, 1}};
+  std::vector<std::vector<int>> quads = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  std::vector<std::vector<int>> tris;
+  for (auto& q : quads) tris.push_back({q[0], q[1], q[2]}), tris.push_back({q[0], q[2], q[3]});
+  return make_mesh(v, tris);
+}
+
+inline Mesh octahedron() {
+  return make_mesh({{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}},
+                   {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}});
+}
+
+inline Mesh icosahedron() {
+  const double p = (1 + std::sqrt(5.0)) / 2;
+  std::vector<std::array<double, 3>> v = {{-1, p, 0}, {1, p, 0}, {-1, -p, 0}, {1, -p, 0}, {0, -1, p}, {0, 1, p},
+                                          {0, -1, -p}, {0, 1, -p}, {p, 0, -1}, {p, 0, 1}, {-p, 0, -1}, {-p, 0, 1}};
+  return make_mesh(v, {{0, 11, 5}, {0, 5, 1}, {0, 1, 7}, {0, 7, 10}, {0, 10, 11}, {1, 5, 9}, {5, 11, 4},
+                       {11, 10, 2}, {10, 7, 6}, {7, 1, 8}, {3, 9, 4}, {3, 4, 2}, {3, 2, 6}, {3, 6, 8},
+                       {3, 8, 9}, {4, 9, 5}, {2, 4, 11}, {6, 2, 10}, {8, 6, 7}, {9, 8, 1}});
+}
+
+/// Dodecahedron as 12 pentagons (fan-triangulated by the unfolder: 36 triangles).
+inline Mesh dodecahedron() {
+  const double p = (1 + std::sqrt(5.0)) / 2, q = 1 / p;
+  std::vector<std::array<double, 3>> v = {
+      {1, 1, 1}, {1, 1, -1}, {1, -1, 1}, {1, -1, -1}, {-1, 1, 1}, {-1, 1, -1}, {-1, -1, 1}, {-1, -1, -1},
+      {0, q, p}, {0, q, -p}, {0, -q, p}, {0, -q, -p}, {q, p, 0}, {q, -p, 0}, {-q, p, 0}, {-q, -p, 0},
+      {p, 0, q}, {p, 0, -q}, {-p, 0, q}, {-p, 0, -q}};
+  std::vector<std::vector<int>> f = {{0, 8, 10, 2, 16}, {0, 16, 17, 1, 12}, {0, 12, 14, 4, 8}, {1, 17, 3, 11, 9},
+                                     {1, 9, 5, 14, 12}, {2, 10, 6, 15, 13}, {2, 13, 3, 17, 16}, {3, 13, 15, 7, 11},
+                                     {4, 14, 5, 19, 18}, {4, 18, 6, 10, 8}, {5, 9, 11, 7, 19}, {6, 18, 19, 7, 15}};
+  // Orient every pentagon outward (the list above mixes orientations).
+  for (auto& loop : f) {
+    Eigen::Vector3d a(v[loop[0]].data()), b(v[loop[1]].data()), c(v[loop[2]].data());
+    if ((b - a).cross(c - a).dot(a) < 0) std::reverse(loop.begin(), loop.end());
+  }
+  return make_mesh(v, f);
+}
+
+inline std::string shared_data() { return DCSHELL_SHARED_DATA; }
+inline bool have_shared_data() { return std::filesystem::is_directory(shared_data()); }
+
+}  // namespace dcshell::test

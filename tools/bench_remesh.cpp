@@ -1,0 +1,205 @@
+// Benchmark of the remesh stage on the shared composite models (issue 4).
+//
+// For each model: the convex hulls of its parts (what the paper's fatness plots show; the shells
+// after cutting come from the pipeline), area-weighted fatness over all hulls together
+//  - plain hulls,
+//  - the paper's baseline: CGAL isotropic remeshing of each hull (target edge length giving about
+//    the hull's own face count, 3 iterations), then the convex hull of the result,
+//  - ours after 1..N iterations at each maximum volume increase (one run per ratio: the first k
+//    iterations of a run do not depend on N),
+// and the wall time of remeshing all hulls with the paper's setting (10 iterations, 5%), median
+// of --repeat runs. Writes a Markdown table to stdout and one SVG plot per model.
+#include <CGAL/Polygon_mesh_processing/measure.h>
+#include <CGAL/Polygon_mesh_processing/remesh.h>
+
+#include <algorithm>
+#include <boost/program_options.hpp>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "dcshell/atomic_output.h"
+#include "dcshell/convex_hull.h"
+#include "dcshell/fatness.h"
+#include "dcshell/load_parts.h"
+#include "dcshell/remesh.h"
+
+namespace fs = std::filesystem;
+namespace po = boost::program_options;
+namespace PMP = CGAL::Polygon_mesh_processing;
+using namespace dcshell;
+
+namespace {
+
+// Area-weighted fatness accumulated over several meshes.
+struct FatSum {
+  double fa = 0, a = 0;
+  void add(const Mesh& m) {
+    const double area = CGAL::to_double(PMP::area(m));
+    fa += area * weighted_fatness(m);
+    a += area;
+  }
+  double value() const { return a > 0 ? fa / a : 0; }
+};
+
+Mesh baseline(const Mesh& hull) {
+  Mesh m = hull;
+  const double area = CGAL::to_double(PMP::area(m));
+  const double len = std::sqrt(4 * area / (std::sqrt(3.0) * double(hull.number_of_faces())));
+  PMP::isotropic_remeshing(faces(m), len, m, CGAL::parameters::number_of_iterations(3));
+  return convex_hull_mesh(mesh_points(m));
+}
+
+std::string svg_plot(const std::string& title, const std::vector<double>& ratios,
+                     const std::vector<std::vector<double>>& curves, double plain, double base) {
+  const double W = 780, H = 400, L = 60, R = 290, T = 40, B = 50;
+  double ymax = std::max(plain, base);
+  for (auto& c : curves)
+    for (double v : c) ymax = std::max(ymax, v);
+  ymax = std::min(0.5, std::ceil(ymax * 10 + 0.5) / 10);
+  const std::size_t n = curves.empty() ? 1 : curves[0].size();
+  auto X = [&](double k) { return L + (W - L - R) * (k - 1) / std::max<double>(1, double(n) - 1); };
+  auto Y = [&](double v) { return T + (H - T - B) * (1 - v / ymax); };
+  std::ostringstream s;
+  char buf[256];
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << W << "\" height=\"" << H
+    << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n";
+  s << "<text x=\"" << L << "\" y=\"22\" font-size=\"15\">" << title << ": weighted fatness vs iterations</text>\n";
+  for (int i = 0; i <= 5; ++i) {
+    const double v = ymax * i / 5;
+    std::snprintf(buf, sizeof buf, "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"#ddd\"/><text x=\"%g\" y=\"%g\" text-anchor=\"end\">%.2f</text>\n",
+                  L, Y(v), W - R, Y(v), L - 6, Y(v) + 4, v);
+    s << buf;
+  }
+  for (double k : {1.0, double(n) / 4, double(n) / 2, 3.0 * n / 4, double(n)}) {
+    std::snprintf(buf, sizeof buf, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">%d</text>\n", X(std::round(k)), H - B + 18, int(std::round(k)));
+    s << buf;
+  }
+  std::snprintf(buf, sizeof buf, "<text x=\"%g\" y=\"%g\" text-anchor=\"middle\">iterations</text>\n", (L + W - R) / 2, H - 10);
+  s << buf;
+  const char* colours[] = {"#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b"};
+  auto legend = [&](int row, const char* colour, const std::string& label, bool dashed) {
+    std::snprintf(buf, sizeof buf, "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"%s\" stroke-width=\"2\"%s/><text x=\"%g\" y=\"%g\">%s</text>\n",
+                  W - R + 10, T + 18.0 * row, W - R + 35, T + 18.0 * row, colour, dashed ? " stroke-dasharray=\"5,4\"" : "",
+                  W - R + 40, T + 18.0 * row + 4, label.c_str());
+    s << buf;
+  };
+  for (std::size_t c = 0; c < curves.size(); ++c) {
+    s << "<polyline fill=\"none\" stroke-width=\"2\" stroke=\"" << colours[c % 6] << "\" points=\"";
+    for (std::size_t k = 0; k < curves[c].size(); ++k) s << X(double(k + 1)) << "," << Y(curves[c][k]) << " ";
+    s << "\"/>\n";
+    std::ostringstream lab;
+    lab << "max +" << ratios[c] * 100 << "% volume";
+    legend(int(c), colours[c % 6], lab.str(), false);
+  }
+  for (auto [v, colour, label, row] : {std::tuple{plain, "#000", "plain hulls", int(curves.size())},
+                                       std::tuple{base, "#888", "baseline (isotropic+hull)", int(curves.size()) + 1}}) {
+    std::snprintf(buf, sizeof buf, "<line x1=\"%g\" y1=\"%g\" x2=\"%g\" y2=\"%g\" stroke=\"%s\" stroke-width=\"1.5\" stroke-dasharray=\"5,4\"/>\n",
+                  L, Y(v), W - R, Y(v), colour);
+    s << buf;
+    legend(row, colour, label, true);
+  }
+  s << "</svg>\n";
+  return s.str();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Shared data: --data, else $DCSHELL_SHARED_DATA, else ../shared/data (beside the repository).
+  const char* env = std::getenv("DCSHELL_SHARED_DATA");
+  std::string data = env ? env : "../shared/data", svg_dir, only;
+  int iterations = 100, repeat = 3;
+  std::vector<double> ratios{0.01, 0.1, 1.0, 10.0};
+  po::options_description opts("usage: bench_remesh [options]\n\noptions");
+  opts.add_options()("help,h", "show this help")("data", po::value(&data), "shared data directory (holds composite/)")(
+      "svg-dir", po::value(&svg_dir), "write remesh-<model>.svg plots here")(
+      "model", po::value(&only), "only this model")("iterations", po::value(&iterations)->default_value(100), "curve length")(
+      "repeat", po::value(&repeat)->default_value(3), "timing runs (median)");
+  po::variables_map vm;
+  po::store(po::parse_command_line(argc, argv, opts), vm);
+  po::notify(vm);
+  if (vm.count("help")) {
+    std::cout << opts << "\n";
+    return 0;
+  }
+  const fs::path root = fs::path(data) / "composite";
+  if (!fs::is_directory(root)) {
+    std::cerr << "bench_remesh: no " << root << " (shared data absent); nothing to do\n";
+    return 0;
+  }
+  std::vector<fs::path> models;
+  for (auto& e : fs::directory_iterator(root))
+    if (e.is_directory() && (only.empty() || e.path().filename() == only)) models.push_back(e.path());
+  std::sort(models.begin(), models.end());
+
+  std::cout << "| model | hulls | faces | fatness plain | baseline | ours 10 it, 5% (faces, vol +) | ours at " << iterations
+            << " it: 1% | 10% | 100% | 1000% | gain at 5% | time 10 it, 5% (s) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const fs::path& dir : models) {
+    std::vector<std::string> warnings;
+    const auto parts = load_parts({dir.string()}, warnings);
+    std::vector<Mesh> hulls;
+    for (auto& p : parts) {
+      Mesh h = convex_hull_mesh(p.points);
+      if (!h.is_empty()) hulls.push_back(std::move(h));
+    }
+    FatSum plain, base;
+    std::size_t faces = 0;
+    for (auto& h : hulls) {
+      plain.add(h);
+      base.add(baseline(h));
+      faces += h.number_of_faces();
+    }
+    // The paper's setting, timed.
+    std::vector<double> times;
+    FatSum paper;
+    std::size_t faces_after = 0;
+    double v0 = 0, v1 = 0;
+    for (int r = 0; r < repeat; ++r) {
+      FatSum f;
+      std::size_t fa = 0;
+      double a = 0, b = 0;
+      const auto t0 = std::chrono::steady_clock::now();
+      for (auto& h : hulls) {
+        RemeshStats st;
+        f.add(remesh_convex_shell(h, std::vector<CutPlane>{}, RemeshOptions{}, &st));
+        fa += st.faces_after;
+        a += st.volume_before;
+        b += st.volume_after;
+      }
+      times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+      paper = f, faces_after = fa, v0 = a, v1 = b;
+    }
+    std::sort(times.begin(), times.end());
+    // Curves.
+    std::vector<std::vector<double>> curves;
+    for (double ratio : ratios) {
+      std::vector<FatSum> per(iterations);
+      for (auto& h : hulls) {
+        RemeshOptions o;
+        o.iterations = iterations;
+        o.max_volume_increase = ratio;
+        o.on_iteration = [&](int k, const Mesh& m) { per[k - 1].add(m); };
+        remesh_convex_shell(h, std::vector<CutPlane>{}, o);
+      }
+      std::vector<double> c;
+      for (auto& f : per) c.push_back(f.value());
+      curves.push_back(c);
+    }
+    const std::string name = dir.filename().string();
+    std::printf("| %s | %zu | %zu | %.4f | %.4f | %.4f (%zu, +%.2f%%) | %.4f | %.4f | %.4f | %.4f | %+.1f%% | %.3f |\n", name.c_str(),
+                hulls.size(), faces, plain.value(), base.value(), paper.value(), faces_after, 100 * (v1 / v0 - 1),
+                curves[0].back(), curves[1].back(), curves[2].back(), curves[3].back(),
+                100 * (paper.value() / plain.value() - 1), times[times.size() / 2]);
+    std::fflush(stdout);
+    if (!svg_dir.empty())
+      write_file_atomically((fs::path(svg_dir) / ("remesh-" + name + ".svg")).string(),
+                            [&](std::ostream& os) { os << svg_plot(name, ratios, curves, plain.value(), base.value()); });
+  }
+  return 0;
+}

@@ -1,0 +1,227 @@
+// Benchmark of the unfolder (issue 5 §6). Inputs: every model of DATA/convex, the convex hulls
+// of every part of every DATA/composite model, and the paper's shells in DATA/paper-output.
+// Per input and heuristic: median time, overlap-free, cut length, net hull area; the GA's
+// improvement over the first net and over the best heuristic; the folding check. Writes a
+// Markdown report (tables + summary) to --out (default: stdout).
+//
+// usage: bench_unfold [--data DIR] [--out FILE] [--repeat N] [--max-faces N] [--no-ga]
+#include <boost/program_options.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <map>
+#include <sstream>
+
+#include "dcshell/convex_hull.h"
+#include "dcshell/fold_check.h"
+#include "dcshell/load_parts.h"
+#include "dcshell/read_mesh.h"
+#include "dcshell/unfold.h"
+#include "dcshell/unfold_ga.h"
+
+namespace fs = std::filesystem;
+namespace po = boost::program_options;
+using namespace dcshell;
+
+namespace {
+
+struct Input {
+  std::string set, name;
+  Mesh mesh;
+};
+
+struct Run {
+  double seconds = 0;
+  UnfoldStats stats;
+  Net net;
+};
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0 : v[v.size() / 2];
+}
+
+template <class F>
+Run timed(int repeat, F&& f) {
+  Run r;
+  std::vector<double> times;
+  for (int i = 0; i < repeat; ++i) {
+    auto t0 = std::chrono::steady_clock::now();
+    r.net = f(&r.stats);
+    times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+  }
+  r.seconds = median(times);
+  return r;
+}
+
+std::string fmt(double x, int prec = 4) {
+  std::ostringstream os;
+  os << std::setprecision(prec) << x;
+  return os.str();
+}
+
+std::vector<std::string> mesh_files(const fs::path& dir) {
+  std::vector<std::string> out;
+  if (!fs::is_directory(dir)) return out;
+  for (auto& e : fs::directory_iterator(dir))
+    if (e.path().extension() == ".obj") out.push_back(e.path().string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string data = "../shared/data", out;
+  int repeat = 3;
+  int max_faces = 1 << 30;
+  po::options_description opts("bench_unfold options");
+  opts.add_options()("help,h", "help")("data", po::value(&data), "shared data directory")(
+      "out", po::value(&out), "Markdown report file (default stdout)")("repeat", po::value(&repeat), "runs per timing (median)")(
+      "max-faces", po::value(&max_faces), "skip larger inputs")("no-ga", "skip the genetic search");
+  po::variables_map vm;
+  po::store(po::parse_command_line(argc, argv, opts), vm);
+  po::notify(vm);
+  if (vm.count("help")) {
+    std::cout << opts << "\n";
+    return 0;
+  }
+  if (!fs::is_directory(data)) {
+    std::cerr << "bench_unfold: no data directory " << data << "\n";
+    return 2;
+  }
+
+  // Inputs: the 69 of the issue (convex models + hulls of Bulbasaur, Squirtle, Cow parts), then
+  // the other composite models' part hulls and the paper's shells.
+  std::vector<Input> inputs;
+  for (auto& f : mesh_files(fs::path(data) / "convex")) inputs.push_back({"convex", fs::path(f).stem().string(), read_mesh(f)});
+  std::vector<std::string> models;
+  for (auto& e : fs::directory_iterator(fs::path(data) / "composite")) models.push_back(e.path().filename().string());
+  std::sort(models.begin(), models.end(), [](const std::string& a, const std::string& b) {
+    auto key = [](const std::string& m) { return (m == "Bulbasaur" || m == "Squirtle" || m == "Cow" ? "0" : "1") + m; };
+    return key(a) < key(b);
+  });
+  for (auto& m : models) {
+    std::vector<std::string> warnings;
+    auto parts = load_parts({(fs::path(data) / "composite" / m).string()}, warnings);
+    for (auto& p : parts) {
+      Mesh hull = convex_hull_mesh(p.points);
+      if (!hull.is_empty()) inputs.push_back({"hull:" + m, p.name, std::move(hull)});
+    }
+  }
+  for (auto& e : fs::directory_iterator(fs::path(data) / "paper-output"))
+    for (auto& f : mesh_files(e.path())) inputs.push_back({"shell:" + e.path().filename().string(), fs::path(f).stem().string(), read_mesh(f)});
+  std::stable_sort(inputs.begin(), inputs.end(), [](const Input& a, const Input& b) {
+    auto rank = [](const std::string& s) {
+      return s == "convex" ? 0 : (s == "hull:Bulbasaur" || s == "hull:Squirtle" || s == "hull:Cow") ? 1 : s.rfind("hull:", 0) == 0 ? 2 : 3;
+    };
+    return rank(a.set) < rank(b.set);
+  });
+
+  struct Config {
+    std::string label;
+    UnfoldHeuristic h;
+    UnfoldObjective o;
+  };
+  std::vector<Config> configs = {{"steepest", UnfoldHeuristic::steepest, UnfoldObjective::hull_area},
+                                 {"flat", UnfoldHeuristic::flat, UnfoldObjective::hull_area},
+                                 {"min-perimeter", UnfoldHeuristic::min_perimeter, UnfoldObjective::cut_length},
+                                 {"random", UnfoldHeuristic::random, UnfoldObjective::hull_area},
+                                 {"best/hull", UnfoldHeuristic::best, UnfoldObjective::hull_area},
+                                 {"best/cut", UnfoldHeuristic::best, UnfoldObjective::cut_length}};
+  const bool ga = !vm.count("no-ga");
+  if (ga) {
+    configs.push_back({"ga/hull", UnfoldHeuristic::ga, UnfoldObjective::hull_area});
+    configs.push_back({"ga/cut", UnfoldHeuristic::ga, UnfoldObjective::cut_length});
+  }
+
+  std::ostringstream table, summary;
+  table << "| set | input | faces | facets |";
+  for (auto& c : configs) table << " " << c.label << " |";
+  table << " fold check (best/hull) |\n|---|---|---|---|";
+  for (std::size_t i = 0; i <= configs.size(); ++i) table << "---|";
+  table << "\n";
+
+  std::map<std::string, int> ok_count, ok_count69;
+  std::map<std::string, std::vector<double>> hull_gain, cut_gain;  // GA vs first / vs best heuristic
+  std::map<std::string, double> model_time;                         // per composite set: unfold + fold check
+  int n69 = 0, fold_verified = 0, fold_total = 0;
+  for (auto& in : inputs) {
+    int nf = static_cast<int>(in.mesh.number_of_faces());
+    if (nf > max_faces) continue;
+    bool in69 = in.set == "convex" || in.set == "hull:Bulbasaur" || in.set == "hull:Squirtle" || in.set == "hull:Cow";
+    n69 += in69;
+    std::cerr << in.set << " " << in.name << " (" << nf << " faces)\n";
+    std::size_t row_start = table.str().size();
+    table << "| " << in.set << " | " << in.name << " | " << nf << " |";
+    std::map<std::string, Run> runs;
+    for (auto& c : configs) {
+      UnfoldOptions o;
+      o.heuristic = c.h;
+      o.objective = c.o;
+      // Only the default configuration picks among candidates by the folding check.
+      if (c.label != "best/hull") o.fold_candidates = 0;
+      int rep = (c.h == UnfoldHeuristic::ga || nf > 5000) ? 1 : repeat;
+      Run r = timed(rep, [&](UnfoldStats* st) { return unfold_convex_mesh(in.mesh, o, st); });
+      if (c.label == "steepest") table << " " << r.stats.facets << " |";
+      bool okk = r.stats.result.overlapping_pairs == 0;
+      ok_count[c.label] += okk;
+      if (in69) ok_count69[c.label] += okk;
+      table << " " << fmt(r.seconds * 1000, 3) << " ms, " << (okk ? "ok" : "OVERLAP") << ", cut " << fmt(r.stats.result.cut_length)
+            << ", hull " << fmt(r.stats.result.hull_area) << " |";
+      runs[c.label] = std::move(r);
+    }
+    // Folding check of the default net; the composite sets' totals include unfolding.
+    // (its time is part of the best/hull unfolding time, which picks the net by this check).
+    const auto& fc = runs["best/hull"].stats.fold;
+    double fsec = 0;
+    fold_verified += fc.verified;
+    ++fold_total;
+    table << " " << (fc.verified ? "verified" : "NOT verified") << ", " << fc.steps << " steps, " << runs["best/hull"].stats.fold_checks << " nets checked |\n";
+    std::cerr << table.str().substr(row_start) << std::flush;  // rows as they come, for long runs
+    if (in.set != "convex") model_time[in.set] += runs["best/hull"].seconds + fsec;
+    if (ga) {
+      auto& gh = runs["ga/hull"].stats;
+      auto& gc = runs["ga/cut"].stats;
+      hull_gain["vs first"].push_back(1 - gh.result.hull_area / gh.first.hull_area);
+      hull_gain["vs best heuristic"].push_back(1 - gh.result.hull_area / runs["best/hull"].stats.result.hull_area);
+      cut_gain["vs first"].push_back(1 - gc.result.cut_length / gc.first.cut_length);
+      cut_gain["vs best heuristic"].push_back(1 - gc.result.cut_length / runs["best/cut"].stats.result.cut_length);
+    }
+  }
+
+  summary << "## Summary\n\n";
+  summary << "Overlap-free nets (one piece by construction), per heuristic, on the issue's " << n69
+          << " inputs (34 convex models + hulls of Bulbasaur, Squirtle, Cow parts) / on all " << fold_total << " inputs:\n\n";
+  for (auto& c : configs) summary << "- " << c.label << ": " << ok_count69[c.label] << " / " << n69 << "; all: " << ok_count[c.label] << " / " << fold_total << "\n";
+  summary << "\nFolding check of the default net (best/hull): verified on " << fold_verified << " / " << fold_total
+          << " (up to 6 best nets checked per input; the first verified one is kept).\n\n";
+  summary << "Unfold (best/hull, including its folding checks) of all shells of a composite set, total:\n\n";
+  for (auto& [set, s] : model_time) summary << "- " << set << ": " << fmt(s * 1000, 3) << " ms\n";
+  if (ga) {
+    auto stats = [](const std::vector<double>& v) {
+      std::ostringstream os;
+      double mean = 0;
+      for (double x : v) mean += x;
+      mean /= std::max<std::size_t>(v.size(), 1);
+      int ge40 = 0, ge50 = 0;
+      for (double x : v) ge40 += x >= 0.4, ge50 += x >= 0.5;
+      os << "mean " << fmt(100 * mean, 3) << "%, median " << fmt(100 * median(v), 3) << "%, >= 40%: " << ge40 << ", >= 50%: " << ge50
+         << " of " << v.size();
+      return os.str();
+    };
+    summary << "\nGA (fitness = normalised hull area or cut length; seeded with the heuristics' nets):\n\n";
+    for (auto& [k, v] : hull_gain) summary << "- hull area reduction " << k << ": " << stats(v) << "\n";
+    for (auto& [k, v] : cut_gain) summary << "- cut length reduction " << k << ": " << stats(v) << "\n";
+  }
+  summary << "\nCells: median time, overlap-free, cut length, net hull area (model units).\n\n";
+
+  std::string report = "# Unfolding benchmark\n\nGenerated by `build/tools/bench_unfold`.\n\n" + summary.str() + table.str();
+  if (out.empty()) std::cout << report;
+  else std::ofstream(out) << report;
+  return 0;
+}

@@ -1,0 +1,98 @@
+#!/usr/bin/env python3
+"""Writes the small composite examples in data/ (run from the repository root).
+
+Every example is a folder with one OBJ per part, except `snowman.obj`, whose connected
+components are the parts. Coordinates are exact decimals so the files are reproducible.
+"""
+import math
+import os
+
+ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
+
+
+def box(lo, hi):
+    (x0, y0, z0), (x1, y1, z1) = lo, hi
+    v = [(x0, y0, z0), (x1, y0, z0), (x1, y1, z0), (x0, y1, z0),
+         (x0, y0, z1), (x1, y0, z1), (x1, y1, z1), (x0, y1, z1)]
+    f = [(0, 3, 2, 1), (4, 5, 6, 7), (0, 1, 5, 4), (1, 2, 6, 5), (2, 3, 7, 6), (3, 0, 4, 7)]
+    return v, f
+
+
+def transform(mesh, angle_deg=0.0, shift=(0, 0, 0)):
+    v, f = mesh
+    a = math.radians(angle_deg)
+    c, s = math.cos(a), math.sin(a)
+    return [(round(c * x - s * y + shift[0], 12), round(s * x + c * y + shift[1], 12), round(z + shift[2], 12))
+            for x, y, z in v], f
+
+
+def sphere(center, r, n_lat=8, n_lon=12):
+    v = [(center[0], center[1], center[2] + r)]
+    for i in range(1, n_lat):
+        th = math.pi * i / n_lat
+        for j in range(n_lon):
+            ph = 2 * math.pi * j / n_lon
+            v.append(tuple(round(c + d, 12) for c, d in zip(center, (r * math.sin(th) * math.cos(ph),
+                                                                       r * math.sin(th) * math.sin(ph),
+                                                                       r * math.cos(th)))))
+    v.append((center[0], center[1], center[2] - r))
+    f = []
+    for j in range(n_lon):
+        f.append((0, 1 + j, 1 + (j + 1) % n_lon))
+    for i in range(n_lat - 2):
+        for j in range(n_lon):
+            a = 1 + i * n_lon + j
+            b = 1 + i * n_lon + (j + 1) % n_lon
+            f.append((a, a + n_lon, b + n_lon))
+            f.append((a, b + n_lon, b))
+    last = len(v) - 1
+    base = 1 + (n_lat - 2) * n_lon
+    for j in range(n_lon):
+        f.append((last, base + (j + 1) % n_lon, base + j))
+    return v, f
+
+
+def write(path, meshes, names=None):
+    os.makedirs(os.path.dirname(path), exist_ok=True)
+    with open(path, "w") as out:
+        out.write("# dcshell example (tools/make_examples.py)\n")
+        off = 1
+        for k, (v, f) in enumerate(meshes):
+            if names:
+                out.write("o %s\n" % names[k])
+            for p in v:
+                out.write("v %.12g %.12g %.12g\n" % p)
+            for face in f:
+                out.write("f " + " ".join(str(i + off) for i in face) + "\n")
+            off += len(v)
+
+
+def main():
+    # The paper's controlled study: two bars meeting at an elbow, at several angles.
+    bar = box((-0.25, -2.0, -0.25), (0.25, 0.25, 0.25))
+    for deg in (15, 30, 45, 60, 75, 90):
+        d = os.path.join(ROOT, "bars", "bars_%02d" % deg)
+        write(os.path.join(d, "bar_a.obj"), [bar])
+        write(os.path.join(d, "bar_b.obj"), [transform(bar, 180 - deg)])
+    # Three boxes overlapping in a common region.
+    d = os.path.join(ROOT, "three_boxes")
+    write(os.path.join(d, "box_a.obj"), [box((0, 0, 0), (2, 1, 1))])
+    write(os.path.join(d, "box_b.obj"), [box((1, 0.25, 0.25), (2.5, 2, 1.25))])
+    write(os.path.join(d, "box_c.obj"), [box((0.5, 0.5, -0.5), (1.75, 1.5, 0.75))])
+    # A part nested inside another, next to a third that overlaps the container.
+    d = os.path.join(ROOT, "nested")
+    write(os.path.join(d, "outer.obj"), [box((0, 0, 0), (2, 2, 2))])
+    write(os.path.join(d, "inner.obj"), [box((0.5, 0.5, 0.5), (1, 1, 1))])
+    write(os.path.join(d, "side.obj"), [box((1.5, 0.5, 0.5), (3, 1.5, 1.5))])
+    # A cube cut into pieces that share faces (already disjoint: no cut needed).
+    d = os.path.join(ROOT, "split_cube")
+    write(os.path.join(d, "left.obj"), [box((0, 0, 0), (0.5, 1, 1))])
+    write(os.path.join(d, "right_front.obj"), [box((0.5, 0, 0), (1, 0.5, 1))])
+    write(os.path.join(d, "right_back.obj"), [box((0.5, 0.5, 0), (1, 1, 1))])
+    # A snowman of three overlapping spheres in one file: its connected components are the parts.
+    write(os.path.join(ROOT, "snowman.obj"),
+          [sphere((0, 0, 0), 1.0), sphere((0, 0, 1.45), 0.7), sphere((0, 0, 2.4), 0.45)])
+
+
+if __name__ == "__main__":
+    main()
