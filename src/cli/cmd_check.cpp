@@ -26,19 +26,8 @@ int run_check(int argc, char** argv) {
     std::string output;
     opts.add_options()("help,h", "show this help")("output,o", po::value(&output), "also write the JSON report to this file")(
         "quiet,q", "print only the JSON report (no problem lines on stderr)");
-    po::options_description hidden;
-    hidden.add_options()("input", po::value(&inputs));
-    po::options_description all;
-    all.add(opts).add(hidden);
-    po::positional_options_description pos;
-    pos.add("input", -1);
     po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
-    po::notify(vm);
-    if (vm.count("help")) {
-      std::cout << opts << "\n";
-      return 0;
-    }
+    if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
     if (inputs.empty()) throw InputError("no input meshes (see 'dcshell check --help')");
     auto t0 = std::chrono::steady_clock::now();
     auto set = read_mesh_set(inputs);

@@ -55,19 +55,8 @@ int run_remesh(int argc, char** argv) {
         "bound on the volume increase of each shell, as a ratio (the paper: 0.05)")(
         "target-faces", po::value(&ro.target_faces)->default_value(0), "do not simplify below this many faces (0: no bound)")(
         "force,f", "replace an existing non-empty output directory");
-    po::options_description hidden;
-    hidden.add_options()("input", po::value(&inputs));
-    po::options_description all;
-    all.add(opts).add(hidden);
-    po::positional_options_description pos;
-    pos.add("input", -1);
     po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
-    po::notify(vm);
-    if (vm.count("help")) {
-      std::cout << opts << "\n";
-      return 0;
-    }
+    if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
     if (inputs.empty()) throw InputError("no input shells (see 'dcshell remesh --help')");
     if (out.empty()) throw InputError("--out DIR is required");
     if (ro.iterations < 0) throw InputError("--iterations must be >= 0");

@@ -149,19 +149,8 @@ int run_shell(int argc, char** argv) {
         "bound on each shell's volume increase when remeshing (paper: 0.05)")(
         "force,f", "replace a non-empty output directory")("quiet,q", "no progress or warnings on stderr")(
         "no-timings", "leave per-stage times out of report.json (byte-identical reruns)");
-    po::options_description hidden;
-    hidden.add_options()("input", po::value(&inputs));
-    po::options_description all;
-    all.add(opts).add(hidden);
-    po::positional_options_description pos;
-    pos.add("input", -1);
     po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
-    po::notify(vm);
-    if (vm.count("help")) {
-      std::cout << opts << "\n";
-      return 0;
-    }
+    if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
     if (out.empty()) throw InputError("missing --out DIR");
     if (inputs.empty()) throw InputError("no input (see 'dcshell shell --help')");
     opt.cut.method = parse_cut_method(method);

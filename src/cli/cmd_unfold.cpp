@@ -103,19 +103,8 @@ int run_unfold(int argc, char** argv) {
         "motion", po::value(&motion), "write the folding motion as numbered OBJ frames FILE_000.obj...")(
         "motion-frames", po::value(&frames)->default_value(31), "frames of the motion (>= 2)");
     std::vector<std::string> inputs;
-    po::options_description hidden;
-    hidden.add_options()("input", po::value(&inputs));
-    po::options_description all;
-    all.add(opts).add(hidden);
-    po::positional_options_description pos;
-    pos.add("input", -1);
     po::variables_map vm;
-    po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
-    po::notify(vm);
-    if (vm.count("help")) {
-      std::cout << opts << "\n";
-      return 0;
-    }
+    if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
 
     // Options first: a usage error writes nothing.
     UnfoldOptions uo;

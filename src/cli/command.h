@@ -5,6 +5,11 @@
 #include <string>
 #include <vector>
 
+namespace boost::program_options {
+class options_description;
+class variables_map;
+}  // namespace boost::program_options
+
 namespace dcshell::cli {
 
 /// A sub-command gets its own arguments (argv[0] is the sub-command name) and returns the
@@ -29,5 +34,10 @@ struct CommandRegistration {
 /// InputError and boost::program_options errors -> "dcshell <cmd>: error: ..." exit 2;
 /// any other exception -> exit 3 (internal error).
 int guarded(const std::string& cmd, const std::function<int()>& body);
+
+/// Parses `opts` plus positional inputs into `vm` and `inputs`. Returns false after printing
+/// `opts` when --help was given (the command then returns 0).
+bool parse_command_line(int argc, char** argv, const boost::program_options::options_description& opts,
+                        std::vector<std::string>& inputs, boost::program_options::variables_map& vm);
 
 }  // namespace dcshell::cli

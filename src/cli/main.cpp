@@ -1,5 +1,5 @@
 // dcshell command-line entry: dispatches to the registered sub-commands.
-#include <boost/program_options/errors.hpp>
+#include <boost/program_options.hpp>
 #include <algorithm>
 #include <cstring>
 #include <iostream>
@@ -30,6 +30,24 @@ int guarded(const std::string& cmd, const std::function<int()>& body) {
     std::cerr << "dcshell " << cmd << ": internal error: " << e.what() << "\n";
     return 3;
   }
+}
+
+bool parse_command_line(int argc, char** argv, const boost::program_options::options_description& opts,
+                        std::vector<std::string>& inputs, boost::program_options::variables_map& vm) {
+  namespace po = boost::program_options;
+  po::options_description hidden;
+  hidden.add_options()("input", po::value(&inputs));
+  po::options_description all;
+  all.add(opts).add(hidden);
+  po::positional_options_description pos;
+  pos.add("input", -1);
+  po::store(po::command_line_parser(argc, argv).options(all).positional(pos).run(), vm);
+  po::notify(vm);
+  if (vm.count("help")) {
+    std::cout << opts << "\n";
+    return false;
+  }
+  return true;
 }
 
 }  // namespace dcshell::cli
