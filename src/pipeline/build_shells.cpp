@@ -158,11 +158,18 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
         if (q != skip && !c.empty()) c = clip(c, oriented_for(pairs[q], part), -2);
       return c;
     };
+    // A pair's refit depends only on the planes of its two parts: skip it while none of them
+    // changed since its last fit (the fit is deterministic, so the answer would be the same).
+    std::vector<std::size_t> version(n, 0);
+    std::vector<std::pair<std::size_t, std::size_t>> fitted_at(pairs.size(), {~std::size_t(0), ~std::size_t(0)});
     for (int s = 0; s < opt.max_sweeps; ++s) {
       double gain = 0;
       for (std::size_t p = 0; p < pairs.size(); ++p) {
         progress("sweep " + std::to_string(s + 1), p, pairs.size());
         if (pairs_of[pairs[p].i].size() + pairs_of[pairs[p].j].size() <= 2) continue;  // nothing else trims them
+        const std::pair<std::size_t, std::size_t> now{version[pairs[p].i], version[pairs[p].j]};
+        if (fitted_at[p] == now) continue;
+        fitted_at[p] = now;
         ConvexPolytope a = trimmed_except(pairs[p].i, p), b = trimmed_except(pairs[p].j, p);
         if (a.empty() || b.empty()) continue;
         CutProblem prob = make_problem(p, std::move(a), std::move(b));
@@ -171,6 +178,9 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
         if (cand.objective < cur.objective - 1e-12 * scale) {
           gain += cur.objective - cand.objective;
           pairs[p].plane = cand.plane;
+          ++version[pairs[p].i];
+          ++version[pairs[p].j];
+          fitted_at[p] = {version[pairs[p].i], version[pairs[p].j]};
         }
       }
       res.sweeps_run = s + 1;
