@@ -14,21 +14,13 @@
 #include "dcshell/convex_hull.h"
 #include "dcshell/exact_polytope.h"
 #include "dcshell/load_parts.h"
+#include "bench_util.h"
+#include "dcshell/error.h"
 #include "dcshell/union_volume.h"
 
 using namespace dcshell;
+using dcshell::bench::median_seconds;
 namespace fs = std::filesystem;
-
-static double median_seconds(int runs, const std::function<void()>& f) {
-  std::vector<double> t;
-  for (int r = 0; r < runs; ++r) {
-    auto t0 = std::chrono::steady_clock::now();
-    f();
-    t.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
-  }
-  std::sort(t.begin(), t.end());
-  return t[t.size() / 2];
-}
 
 int main(int argc, char** argv) {
   std::string data = "../shared/data";
@@ -42,13 +34,15 @@ int main(int argc, char** argv) {
     return 0;
   }
   std::printf("| set | parts | check (median s) | overlapping pairs | union volume (median s) | union terms |\n|---|---|---|---|---|---|\n");
-  std::vector<fs::path> sets;
-  for (const char* sub : {"composite", "acd"})
-    for (const auto& e : fs::directory_iterator(fs::path(data) / sub)) sets.push_back(e.path());
-  std::sort(sets.begin(), sets.end());
-  for (const auto& set : sets) {
+  for (const auto& set : dcshell::bench::data_sets(data, {"composite", "acd"})) {
     std::vector<std::string> warnings;
-    auto parts = load_parts({set.string()}, warnings);
+    std::vector<Part> parts;
+    try {
+      parts = load_parts({set.string()}, warnings);
+    } catch (const InputError& e) {
+      std::fprintf(stderr, "bench_core: error: %s\n", e.what());
+      return 2;
+    }
     std::vector<Mesh> hulls;
     std::vector<ExactPolytope> polys;
     for (std::size_t i = 0; i < parts.size(); ++i) {
