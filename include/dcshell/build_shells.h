@@ -20,6 +20,12 @@ struct ShellOptions {
   /// already trimmed by all their other planes, keeping a new plane only when it loses less.
   /// Used by the volume-minimising methods (exact, full); lsf and svm are single-pass.
   int max_sweeps = 6;
+  /// Sweeps re-fit a pair from scratch (true) or, for `full`, from its current plane with a
+  /// short scan (false, the default: several times faster; see doc/results.md for the losses).
+  bool global_sweeps = false;
+  /// Sweeps stop once one gains less than this fraction of the hulls' total volume (each sweep
+  /// gains less than the one before, typically by a factor of 2 to 10).
+  double sweep_tolerance = 2e-6;
   /// A hull with at least this fraction of its volume inside one other hull is absorbed by it
   /// (no shell of its own; reported). Exactly nested and duplicated parts are absorbed too.
   double absorb_fraction = 0.99;
@@ -62,6 +68,8 @@ struct ShellResult {
   std::vector<std::size_t> vanished;   ///< parts whose shell was cut away entirely
   std::size_t overlapping_pairs = 0;
   int sweeps_run = 0;
+  /// Objective decrease of each sweep, as a fraction of the hulls' total volume.
+  std::vector<double> sweep_gains;
   double union_volume = 0.0;           ///< of the parts' original convex hulls (certified enclosure midpoint)
   double shells_volume = 0.0;
   double volume_loss = 0.0;            ///< (union - shells) / union

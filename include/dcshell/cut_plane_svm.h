@@ -21,8 +21,10 @@ std::vector<Eigen::Vector3d> sample_polytope(const ConvexPolytope& p, std::size_
 CutPlane linear_svm(const std::vector<Eigen::Vector3d>& negative, const std::vector<Eigen::Vector3d>& positive,
                     double c, std::uint64_t seed);
 
-/// SVM plane between `samples` points drawn in a and b (counts proportional to volume, at
-/// least 16 each). Normal oriented from a toward b.
+/// SVM plane between `samples` points drawn in a \ b and b \ a (the overlap's points belong to
+/// both classes and only add noise; counts proportional to volume, at least 16 each). When
+/// either difference has less than 1% of its hull's volume (nested hulls), the points are
+/// drawn in the whole of a and b. Normal oriented from a toward b.
 CutPlane svm_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b, double c, std::size_t samples,
                        std::uint64_t seed);
 

@@ -13,6 +13,7 @@
 //  - full:  normal and offset optimised together, never worse than exact (cut_plane_full.h).
 #pragma once
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,12 @@ struct CutOptions {
   std::size_t svm_samples = 600;      ///< points sampled in a and b together (by volume)
   std::size_t full_directions = 32;   ///< Fibonacci-sphere directions scanned by full
   std::size_t full_starts = 2;        ///< best distinct directions refined locally by full
+  /// full only: a good plane for a nearby problem (the pair's plane before a refinement sweep
+  /// re-fits it against hulls trimmed by their other planes). The search then polishes from
+  /// it (and from the best of `warm_directions` scanned directions), skipping the SVM start:
+  /// the landscape changed little, and a sweep keeps the new plane only if it loses less.
+  std::optional<CutPlane> warm_start;
+  std::size_t warm_directions = 0;
 };
 
 struct CutResult {

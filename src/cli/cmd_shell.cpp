@@ -35,8 +35,11 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
       .field("method", to_string(opt.cut.method))
       .field("lambda", opt.cut.lambda)
       .field("svm_c", opt.cut.svm_c)
+      .field("svm_samples", opt.cut.svm_samples)
       .field("seed", static_cast<std::int64_t>(opt.cut.seed))
       .field("max_sweeps", opt.max_sweeps)
+      .field("global_sweeps", opt.global_sweeps)
+      .field("sweep_tolerance", opt.sweep_tolerance)
       .field("absorb_fraction", opt.absorb_fraction)
       .field("simplify_iterations", opt.simplify_iterations)
       .field("max_volume_increase", opt.max_volume_increase)
@@ -100,6 +103,7 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
   json.end_array();
   json.field("overlapping_pairs", r.overlapping_pairs)
       .field("sweeps", r.sweeps_run)
+      .field("sweep_gains", r.sweep_gains)
       .field("union_volume", r.union_volume)
       .field("shells_volume", r.shells_volume)
       .field("volume_loss", r.volume_loss);
@@ -139,8 +143,13 @@ int run_shell(int argc, char** argv) {
         "cut-plane method: lsf | svm | exact (the paper's) | full (normal and offset optimised)")(
         "lambda", po::value(&opt.cut.lambda)->default_value(0.01), "weight of the interference term (paper Eq. 7)")(
         "svm-c", po::value(&opt.cut.svm_c)->default_value(1.0), "SVM soft-margin penalty")(
+        "svm-samples", po::value(&opt.cut.svm_samples)->default_value(opt.cut.svm_samples),
+        "points sampled in the two hulls of a pair for the SVM (svm, exact, full)")(
         "seed", po::value(&seed)->default_value(1), "seed of every random choice")(
         "sweeps", po::value(&opt.max_sweeps)->default_value(6), "maximum refinement sweeps (exact, full)")(
+        "sweep-tolerance", po::value(&opt.sweep_tolerance)->default_value(opt.sweep_tolerance),
+        "stop the sweeps once one gains less than this fraction of the hulls' volume")(
+        "global-sweeps", "full: re-fit pairs from scratch in every sweep (slower, sometimes a little less loss)")(
         "absorb-fraction", po::value(&opt.absorb_fraction)->default_value(0.99),
         "absorb a part whose hull has at least this fraction inside one other hull")(
         "simplify-iterations", po::value(&opt.simplify_iterations)->default_value(0),
@@ -157,10 +166,14 @@ int run_shell(int argc, char** argv) {
     opt.cut.seed = seed;
     if (!(opt.cut.lambda >= 0)) throw InputError("--lambda must be >= 0");
     if (!(opt.cut.svm_c > 0)) throw InputError("--svm-c must be > 0");
+    if (opt.cut.svm_samples < 32 || opt.cut.svm_samples > 10000000)
+      throw InputError("--svm-samples must be in [32, 1e7]");
     if (opt.max_sweeps < 0) throw InputError("--sweeps must be >= 0");
+    if (!(opt.sweep_tolerance >= 0)) throw InputError("--sweep-tolerance must be >= 0");
     if (!(opt.absorb_fraction > 0 && opt.absorb_fraction <= 1)) throw InputError("--absorb-fraction must be in (0, 1]");
     if (opt.simplify_iterations < 0) throw InputError("--simplify-iterations must be >= 0");
     if (!(opt.max_volume_increase >= 0)) throw InputError("--max-volume-increase must be >= 0");
+    opt.global_sweeps = vm.count("global-sweeps") > 0;
     const bool quiet = vm.count("quiet");
 
     std::vector<std::string> files = expand_inputs(inputs);

@@ -2,10 +2,14 @@
 // needs no constructions, so it is exactly the hull of the given points).
 #include "dcshell/convex_hull.h"
 
+#include <CGAL/Delaunay_triangulation_2.h>
+#include <CGAL/Triangulation_vertex_base_with_info_2.h>
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
 #include <array>
+#include <cmath>
+#include <numeric>
 
 namespace dcshell {
 
@@ -26,24 +30,118 @@ bool spans_3d(const std::vector<Point3>& points) {
   return false;
 }
 
+namespace {
+
+// Delaunay triangulation of a strictly convex, exactly planar polygon given in boundary order:
+// fat triangles, decided by exact predicates on the polygon projected along its dominant normal
+// axis (dropping a coordinate is exact). Corners are inserted in the given order, so ties
+// (cocircular corners) are broken the same way every time. Triangles keep the polygon's
+// orientation.
+std::vector<std::array<std::size_t, 3>> triangulate_convex_facet(const std::vector<Point3>& poly) {
+  const std::size_t k = poly.size();
+  if (k == 3) return {{0, 1, 2}};
+  double n[3] = {0, 0, 0};  // Newell normal: only its dominant axis and that axis' sign are used
+  for (std::size_t i = 0; i < k; ++i) {
+    const Point3& a = poly[i];
+    const Point3& b = poly[(i + 1) % k];
+    n[0] += (a.y() - b.y()) * (a.z() + b.z());
+    n[1] += (a.z() - b.z()) * (a.x() + b.x());
+    n[2] += (a.x() - b.x()) * (a.y() + b.y());
+  }
+  int axis = 0;
+  for (int d = 1; d < 3; ++d)
+    if (std::fabs(n[d]) > std::fabs(n[axis])) axis = d;
+  const int u = (axis + 1) % 3, w = (axis + 2) % 3;  // (u, w, axis) is right-handed
+  using Vb = CGAL::Triangulation_vertex_base_with_info_2<std::size_t, Epick>;
+  using Tds = CGAL::Triangulation_data_structure_2<Vb>;
+  CGAL::Delaunay_triangulation_2<Epick, Tds> dt;
+  for (std::size_t i = 0; i < k; ++i) dt.insert(Epick::Point_2(poly[i][u], poly[i][w]))->info() = i;
+  std::vector<std::array<std::size_t, 3>> tris;
+  for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
+    std::array<std::size_t, 3> t{f->vertex(0)->info(), f->vertex(1)->info(), f->vertex(2)->info()};
+    if (n[axis] < 0) std::swap(t[1], t[2]);  // seen from below the projection plane
+    tris.push_back(t);
+  }
+  return tris;
+}
+
+}  // namespace
+
 Mesh convex_hull_mesh(const std::vector<Point3>& points) {
   Mesh raw;
   if (!spans_3d(points)) return raw;
   CGAL::convex_hull_3(points.begin(), points.end(), raw);
-  // Canonical order (vertices lexicographic, each triangle starting at its smallest index,
-  // triangles sorted): the hull code orders its output by memory address in places, so two
-  // calls in one process can differ; everything downstream must not.
-  std::vector<Mesh::Vertex_index> order(raw.vertices().begin(), raw.vertices().end());
+  // CGAL's quickhull orders work by vertex-handle address, so where input points are coplanar
+  // on a hull facet (cut faces, boxes, grids), which of them become vertices and how the facet
+  // is triangulated depend on the heap state: two calls in one process can differ. Rebuild a
+  // canonical hull: the exact facets (maximal coplanar regions), only their corners, each facet
+  // Delaunay-triangulated (fat triangles), vertices in lexicographic order, triangles sorted.
+  const auto nf = raw.number_of_faces() + raw.number_of_removed_faces();
+  std::vector<std::size_t> group(nf);
+  std::iota(group.begin(), group.end(), std::size_t(0));
+  const auto find = [&](std::size_t f) {
+    while (group[f] != f) f = group[f] = group[group[f]];
+    return f;
+  };
+  for (auto e : raw.edges()) {
+    const auto h = raw.halfedge(e), o = raw.opposite(h);
+    const Point3& p = raw.point(raw.source(h));
+    const Point3& q = raw.point(raw.target(h));
+    const Point3& r = raw.point(raw.target(raw.next(h)));
+    const Point3& s = raw.point(raw.target(raw.next(o)));
+    if (CGAL::orientation(p, q, r, s) == CGAL::COPLANAR) {
+      const auto a = find(std::size_t(raw.face(h))), b = find(std::size_t(raw.face(o)));
+      group[std::max(a, b)] = std::min(a, b);
+    }
+  }
+  const auto same = [&](Mesh::Halfedge_index h) {
+    return find(std::size_t(raw.face(h))) == find(std::size_t(raw.face(raw.opposite(h))));
+  };
+  // Facet boundaries, walked once from each facet's first boundary halfedge; straight-through
+  // vertices (on an edge of the polytope) are dropped, as are facet-interior ones.
+  std::vector<std::vector<Mesh::Vertex_index>> facets;
+  std::vector<char> seen(raw.number_of_halfedges() + raw.number_of_removed_halfedges(), 0);
+  for (auto h0 : raw.halfedges()) {
+    if (raw.is_border(h0) || seen[std::size_t(h0)] || same(h0)) continue;
+    std::vector<Mesh::Vertex_index> ring;
+    auto h = h0;
+    do {
+      seen[std::size_t(h)] = 1;
+      ring.push_back(raw.target(h));
+      h = raw.next(h);
+      while (same(h)) h = raw.next(raw.opposite(h));
+    } while (h != h0);
+    std::vector<Mesh::Vertex_index> corners;
+    for (std::size_t i = 0; i < ring.size(); ++i) {
+      const auto& a = raw.point(ring[(i + ring.size() - 1) % ring.size()]);
+      const auto& c = raw.point(ring[(i + 1) % ring.size()]);
+      if (!CGAL::collinear(a, raw.point(ring[i]), c)) corners.push_back(ring[i]);
+    }
+    facets.push_back(std::move(corners));
+  }
+  std::vector<Mesh::Vertex_index> order;
+  std::vector<char> is_corner(raw.number_of_vertices() + raw.number_of_removed_vertices(), 0);
+  for (const auto& f : facets)
+    for (auto v : f)
+      if (!is_corner[std::size_t(v)]) is_corner[std::size_t(v)] = 1, order.push_back(v);
   std::sort(order.begin(), order.end(), [&](auto a, auto b) { return raw.point(a) < raw.point(b); });
-  std::vector<std::size_t> rank(raw.number_of_vertices() + raw.number_of_removed_vertices());
+  std::vector<std::size_t> rank(is_corner.size());
   for (std::size_t i = 0; i < order.size(); ++i) rank[std::size_t(order[i])] = i;
   std::vector<std::array<std::size_t, 3>> tris;
-  for (auto f : raw.faces()) {
-    std::array<std::size_t, 3> t;
-    std::size_t k = 0;
-    for (auto v : CGAL::vertices_around_face(raw.halfedge(f), raw)) t[k++] = rank[std::size_t(v)];
-    std::rotate(t.begin(), std::min_element(t.begin(), t.end()), t.end());
-    tris.push_back(t);
+  std::vector<Point3> poly;
+  for (const auto& f : facets) {
+    poly.clear();
+    std::vector<std::size_t> ids;
+    for (auto v : f) poly.push_back(raw.point(v)), ids.push_back(rank[std::size_t(v)]);
+    // Start at the smallest corner so the triangulation does not depend on the walk's start.
+    const auto first = std::min_element(ids.begin(), ids.end()) - ids.begin();
+    std::rotate(ids.begin(), ids.begin() + first, ids.end());
+    std::rotate(poly.begin(), poly.begin() + first, poly.end());
+    for (const auto& t : triangulate_convex_facet(poly)) {
+      std::array<std::size_t, 3> tri{ids[t[0]], ids[t[1]], ids[t[2]]};
+      std::rotate(tri.begin(), std::min_element(tri.begin(), tri.end()), tri.end());
+      tris.push_back(tri);
+    }
   }
   std::sort(tris.begin(), tris.end());
   Mesh hull;

@@ -7,9 +7,17 @@
 namespace dcshell {
 
 CutPlane exact_cut_plane(const CutProblem& problem, const CutOptions& options) {
-  const CutPlane svm = svm_cut_plane(problem.a, problem.b, options.svm_c, options.svm_samples, options.seed);
   CutObjective objective(problem, options.lambda);
-  return objective.best_offset(svm.normal).plane;
+  // The SVM's penalty is fragile (the paper says so): the normal it gives for overlapping
+  // hulls swings with it. Try a decade either side and let the exact objective choose.
+  CutObjective::Best best;
+  bool first = true;
+  for (double scale : {1.0, 0.1, 10.0}) {
+    const CutPlane svm = svm_cut_plane(problem.a, problem.b, scale * options.svm_c, options.svm_samples, options.seed);
+    const CutObjective::Best b = objective.best_offset(svm.normal);
+    if (first || b.value < best.value) best = b, first = false;
+  }
+  return best.plane;
 }
 
 }  // namespace dcshell

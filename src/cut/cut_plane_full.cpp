@@ -99,14 +99,20 @@ Best polish(CutObjective& obj, const Best& start) {
 
 CutPlane full_cut_plane(const CutProblem& problem, const CutOptions& options) {
   CutObjective obj(problem, options.lambda);
-  const CutPlane exact_plane = exact_cut_plane(problem, options);
-  const Best exact{exact_plane, obj.value(exact_plane)};
-
+  const bool warm = options.warm_start.has_value();
   // Candidate normals, each with its exactly optimal offset.
-  std::vector<Eigen::Vector3d> dirs{exact.plane.normal, lsf_cut_plane(problem.a, problem.b).normal};
-  {
+  Best best;
+  std::vector<Eigen::Vector3d> dirs;
+  if (warm) {
+    best = obj.best_offset(options.warm_start->normal);
+    dirs.push_back(best.plane.normal);
+  } else {
+    const CutPlane exact_plane = exact_cut_plane(problem, options);
+    best = {exact_plane, obj.value(exact_plane)};
+    dirs.push_back(exact_plane.normal);
+    dirs.push_back(lsf_cut_plane(problem.a, problem.b).normal);
     const auto& pts = obj.range_points();
-    if (pts.size() >= 3) {
+    if (pts.size() >= 3) {  // principal axes of the overlap
       Eigen::Vector3d m = Eigen::Vector3d::Zero();
       for (const auto& v : pts) m += v;
       m /= double(pts.size());
@@ -119,7 +125,7 @@ CutPlane full_cut_plane(const CutProblem& problem, const CutOptions& options) {
       }
     }
   }
-  for (const auto& d : fibonacci_sphere(options.full_directions)) dirs.push_back(d);
+  for (const auto& d : fibonacci_sphere(warm ? options.warm_directions : options.full_directions)) dirs.push_back(d);
   // The scan ignores the interference terms (weight lambda, small, but one slice profile each):
   // they only re-rank nearly equal directions, and the polish below uses the full objective.
   const bool has_interference = options.lambda != 0 && (!problem.interference_a.empty() || !problem.interference_b.empty());
@@ -128,12 +134,13 @@ CutPlane full_cut_plane(const CutProblem& problem, const CutOptions& options) {
   CutObjective& coarse = coarse_own ? *coarse_own : obj;
   std::vector<Best> cands;
   cands.reserve(dirs.size());
-  for (const auto& d : dirs)
-    if (d.norm() > 0) cands.push_back(coarse.best_offset(d));
-  std::stable_sort(cands.begin(), cands.end(), [](const Best& x, const Best& y) { return x.value < y.value; });
+  // A warm start is always polished first, whatever the scan says.
+  if (warm) cands.push_back(best);
+  for (std::size_t k = warm ? 1 : 0; k < dirs.size(); ++k)
+    if (dirs[k].norm() > 0) cands.push_back(coarse.best_offset(dirs[k]));
+  std::stable_sort(cands.begin() + (warm ? 1 : 0), cands.end(), [](const Best& x, const Best& y) { return x.value < y.value; });
 
   // Polish the best few distinct directions (at least ~15 degrees apart).
-  Best best = exact;
   std::vector<Eigen::Vector3d> chosen;
   for (const auto& c : cands) {
     if (chosen.size() >= options.full_starts) break;

@@ -174,7 +174,9 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
         if (a.empty() || b.empty()) continue;
         CutProblem prob = make_problem(p, std::move(a), std::move(b));
         CutResult cur = evaluate_cut_plane(prob, pairs[p].plane, opt.cut.lambda);
-        CutResult cand = fit_cut_plane(prob, pair_options(p));
+        CutOptions o = pair_options(p);
+        if (!opt.global_sweeps) o.warm_start = pairs[p].plane;
+        CutResult cand = fit_cut_plane(prob, o);
         if (cand.objective < cur.objective - 1e-12 * scale) {
           gain += cur.objective - cand.objective;
           pairs[p].plane = cand.plane;
@@ -184,7 +186,8 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
         }
       }
       res.sweeps_run = s + 1;
-      if (gain <= 1e-7 * scale) break;
+      res.sweep_gains.push_back(scale > 0 ? gain / scale : 0.0);
+      if (gain <= opt.sweep_tolerance * scale) break;
     }
   }
   clock.lap("sweeps");

@@ -114,10 +114,11 @@ BOOST_AUTO_TEST_CASE(certify_sees_an_overlap_far_below_floating_tolerance) {
 BOOST_AUTO_TEST_CASE(convexity_verdicts) {
   Mesh cube = convex_hull_mesh(box_points(0, 0, 0, 1, 1, 1));
   BOOST_TEST(check_convexity(cube).ok());
-  // Push one vertex inward: closed, outward, not convex.
+  // Push one vertex inward past the plane of its neighbours: closed, outward, not convex
+  // whatever the triangulation of the square faces.
   Mesh dent = cube;
   for (auto v : dent.vertices())
-    if (dent.point(v) == Point3(1, 1, 1)) dent.point(v) = Point3(0.9, 0.9, 0.9);
+    if (dent.point(v) == Point3(1, 1, 1)) dent.point(v) = Point3(0.5, 0.5, 0.5);
   ConvexityVerdict d = check_convexity(dent);
   BOOST_TEST(d.closed);
   BOOST_TEST(!d.convex);
@@ -131,6 +132,47 @@ BOOST_AUTO_TEST_CASE(convexity_verdicts) {
   Mesh open = cube;
   open.remove_face(*open.faces().begin());
   BOOST_TEST(!check_convexity(open).closed);
+}
+
+BOOST_AUTO_TEST_CASE(hull_is_canonical_whatever_the_order_and_heap) {
+  // A box with a grid on every face and points on its edges: only the 8 corners are vertices,
+  // each square facet gets 2 triangles, and the mesh is the same for shuffled inputs and
+  // whatever was allocated before (CGAL's quickhull orders work by handle address).
+  std::vector<Point3> pts;
+  for (int i = 0; i <= 4; ++i)
+    for (int j = 0; j <= 4; ++j)
+      for (int k = 0; k <= 4; ++k)
+        if (i % 4 == 0 || j % 4 == 0 || k % 4 == 0) pts.emplace_back(0.25 * i, 0.5 * j, 0.125 * k);
+  const auto key = [](const Mesh& m) {
+    std::vector<double> out;
+    for (auto f : m.faces())
+      for (auto v : CGAL::vertices_around_face(m.halfedge(f), m))
+        for (int d = 0; d < 3; ++d) out.push_back(m.point(v)[d]);
+    return out;
+  };
+  const Mesh first = convex_hull_mesh(pts);
+  BOOST_TEST(first.number_of_vertices() == 8u);
+  BOOST_TEST(first.number_of_faces() == 12u);
+  BOOST_TEST(check_convexity(first).ok());
+  std::vector<std::vector<double>> ballast;
+  std::uint64_t s = 1;
+  for (int round = 0; round < 20; ++round) {
+    for (std::size_t i = pts.size(); i > 1; --i) {  // deterministic shuffle
+      s = s * 6364136223846793005ULL + 1442695040888963407ULL;
+      std::swap(pts[i - 1], pts[(s >> 33) % i]);
+    }
+    ballast.emplace_back(std::size_t(1 + (s >> 40) % 5000), 0.0);  // move the heap around
+    const Mesh again = convex_hull_mesh(pts);
+    BOOST_TEST((key(again) == key(first)), "round " << round);
+  }
+  // A regular octagon prism: cocircular facet corners, still one fixed triangulation.
+  std::vector<Point3> prism;
+  for (int i = 0; i < 8; ++i)
+    for (double z : {0.0, 1.0}) prism.emplace_back(std::cos(i * M_PI / 4), std::sin(i * M_PI / 4), z);
+  const Mesh p0 = convex_hull_mesh(prism);
+  BOOST_TEST(p0.number_of_faces() == 2u * 6u + 16u);
+  std::reverse(prism.begin(), prism.end());
+  BOOST_TEST((key(convex_hull_mesh(prism)) == key(p0)));
 }
 
 BOOST_AUTO_TEST_SUITE_END()
