@@ -34,7 +34,7 @@ const CutMethod kMethods[] = {CutMethod::lsf, CutMethod::svm, CutMethod::exact, 
 struct Row {
   std::string set, group, method;
   std::size_t parts = 0, pairs = 0, shells = 0;
-  double loss = 0, total = 0;
+  double loss = 0, total = 0, load = 0;
   bool certified = false;
   std::map<std::string, double> stage;
 };
@@ -48,7 +48,12 @@ double median(std::vector<double> v) {
 // the child process).
 std::string run_set(const fs::path& set, const std::string& group, int runs) {
   std::vector<std::string> warnings;
-  const std::vector<Part> parts = load_parts({set.string()}, warnings);
+  std::vector<Part> parts;
+  // Loading is part of a `dcshell shell` run: timed too, and added to every method's total.
+  const double load = bench::median_seconds(runs, [&] {
+    warnings.clear();
+    parts = load_parts({set.string()}, warnings);
+  });
   std::ostringstream out;
   out.precision(17);
   for (CutMethod m : kMethods) {
@@ -63,7 +68,7 @@ std::string run_set(const fs::path& set, const std::string& group, int runs) {
     }
     out << set.filename().string() << '\t' << group << '\t' << to_string(m) << '\t' << parts.size() << '\t'
         << r.overlapping_pairs << '\t' << r.shells.size() << '\t' << r.volume_loss << '\t'
-        << r.certification.certified() << '\t' << median(total);
+        << r.certification.certified() << '\t' << load + median(total) << '\t' << load;
     for (const char* s : kStages) out << '\t' << median(stage[s]);
     out << '\n';
   }
@@ -113,7 +118,7 @@ std::pair<std::vector<Row>, double> run_isolated(const fs::path& set, const std:
     std::getline(f, r.set, '\t');
     std::getline(f, r.group, '\t');
     std::getline(f, r.method, '\t');
-    f >> r.parts >> r.pairs >> r.shells >> r.loss >> r.certified >> r.total;
+    f >> r.parts >> r.pairs >> r.shells >> r.loss >> r.certified >> r.total >> r.load;
     for (const char* s : kStages) f >> r.stage[s];
     rows.push_back(r);
   }
@@ -162,29 +167,33 @@ int main(int argc, char** argv) {
   char when[64];
   const std::time_t now = std::time(nullptr);
   std::strftime(when, sizeof when, "%Y-%m-%d", std::gmtime(&now));
-  double load[3] = {0, 0, 0};
-  getloadavg(load, 3);
+  double loadavg[3] = {0, 0, 0};
+  getloadavg(loadavg, 3);
   char line[512];
   md << "# DC-shell results (written by tools/bench_shell)\n\n";
   std::snprintf(line, sizeof line,
                 "Measured %s on a %ld-core machine (load average %.1f at the start), median of %d runs per set and "
                 "method, the whole pipeline in one process per set (hulls to certified shells, no file output).\n",
-                when, sysconf(_SC_NPROCESSORS_ONLN), load[0], runs);
+                when, sysconf(_SC_NPROCESSORS_ONLN), loadavg[0], runs);
   md << line << "Reproduce from the repository root: `./build/tools/bench_shell --data ../shared/data --runs " << runs
      << " --out doc/results.md`.\n\n";
-  md << "Volume loss = (vol(∪ hulls) − Σ vol(shells)) / vol(∪ hulls), both exact-certified. Peak memory is the "
-        "maximum resident size of the process that ran all four methods on the set.\n";
+  md << "Volume loss = (vol(∪ hulls) − Σ vol(shells)) / vol(∪ hulls), both exact-certified. `total s` is loading "
+        "plus the pipeline (what `dcshell shell` does before writing its few small files); the stage columns split "
+        "the pipeline. Peak memory is the maximum resident size of the process that ran all four methods on the "
+        "set.\n";
 
   auto table = [&](const std::string& group, const std::string& title) {
-    md << "\n## " << title << "\n\n| set | parts | pairs | method | shells | volume loss | certified | total s |";
+    if (std::none_of(rows.begin(), rows.end(), [&](const Row& r) { return r.group == group; })) return;
+    md << "\n## " << title << "\n\n| set | parts | pairs | method | shells | volume loss | certified | total s | load |";
     for (const char* s : kStages) md << ' ' << s << " |";
-    md << " peak MB |\n|---|---|---|---|---|---|---|---|";
+    md << " peak MB |\n|---|---|---|---|---|---|---|---|---|";
     for (std::size_t k = 0; k < std::size(kStages); ++k) md << "---|";
     md << "---|\n";
     for (const auto& r : rows) {
       if (r.group != group) continue;
-      std::snprintf(line, sizeof line, "| %s | %zu | %zu | %s | %zu | %.4f%% | %s | %.3f |", r.set.c_str(), r.parts,
-                    r.pairs, r.method.c_str(), r.shells, 100 * r.loss, r.certified ? "yes" : "**NO**", r.total);
+      std::snprintf(line, sizeof line, "| %s | %zu | %zu | %s | %zu | %.4f%% | %s | %.3f | %.3f |", r.set.c_str(),
+                    r.parts, r.pairs, r.method.c_str(), r.shells, 100 * r.loss, r.certified ? "yes" : "**NO**", r.total,
+                    r.load);
       md << line;
       for (const char* s : kStages) {
         std::snprintf(line, sizeof line, " %.3f |", r.stage.at(s));
