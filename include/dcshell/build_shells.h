@@ -30,6 +30,8 @@ struct ShellOptions {
   /// (no shell of its own; reported). Exactly nested and duplicated parts are absorbed too.
   double absorb_fraction = 0.99;
   /// Simplify + regularise hulls before cutting and shells after (0 = off), paper: 10 and 5%.
+  /// The volume bound is split between the two stages: each may grow its input (a hull, then
+  /// a shell) by sqrt(1 + R) - 1, so that the two compound to R.
   int simplify_iterations = 0;
   double max_volume_increase = 0.05;
   /// Called with (stage, done, total) as work proceeds.

@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "dcshell/exact_polytope.h"
+#include "dcshell/overlaps.h"
 
 namespace dcshell {
 
@@ -21,5 +22,10 @@ struct UnionVolume {
 /// Terms are summed in interval arithmetic; only when the enclosure is wider than
 /// `max_relative_error` of the value is the sum redone with exact rationals.
 UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max_relative_error = 1e-12);
+
+/// The same, reusing the pairwise intersections `find_overlaps(polytopes)` already computed
+/// (every pair with a common interior, i < j): same terms, same sum, fewer exact intersections.
+UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, const std::vector<Overlap>& overlaps,
+                         double max_relative_error = 1e-12);
 
 }  // namespace dcshell

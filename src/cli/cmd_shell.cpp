@@ -155,7 +155,7 @@ int run_shell(int argc, char** argv) {
         "simplify-iterations", po::value(&opt.simplify_iterations)->default_value(0),
         "simplify + regularise hulls and shells (paper: 10; 0 = off)")(
         "max-volume-increase", po::value(&opt.max_volume_increase)->default_value(0.05),
-        "bound on each shell's volume increase when remeshing (paper: 0.05)")(
+        "volume increase allowed to remeshing (paper: 0.05), split between hulls and shells")(
         "force,f", "replace a non-empty output directory")("quiet,q", "no progress or warnings on stderr")(
         "no-timings", "leave per-stage times out of report.json (byte-identical reruns)");
     po::variables_map vm;

@@ -13,6 +13,8 @@ namespace {
 struct NerveWalk {
   const std::vector<ExactPolytope>& polys;
   const std::vector<std::vector<std::size_t>>& later;  // overlapping neighbours with larger index
+  // Known pairwise intersections, parallel to `later` (null: compute them).
+  const std::vector<std::vector<const ExactPolytope*>>* pair_region;
   bool exact;
   UnionVolume& out;
   CGAL::Interval_nt<true> sum_interval{0};  // protected: sets the rounding mode itself
@@ -20,16 +22,22 @@ struct NerveWalk {
 
   // `cur` = intersection of the chosen set (size `depth`), `cands` = indices that overlap every
   // member and come after the last one.
-  void walk(const ExactPolytope& cur, std::size_t depth, const std::vector<std::size_t>& cands) {
+  void walk(const ExactPolytope& cur, std::size_t depth, const std::vector<std::size_t>& cands, std::size_t first) {
     for (std::size_t c = 0; c < cands.size(); ++c) {
       std::size_t k = cands[c];
-      ExactPolytope next = intersect(cur, polys[k]);
+      ExactPolytope next;
+      if (depth == 1 && pair_region) {
+        const auto& l = later[first];
+        next = *(*pair_region)[first][std::size_t(std::lower_bound(l.begin(), l.end(), k) - l.begin())];
+      } else {
+        next = intersect(cur, polys[k]);
+      }
       if (next.empty()) continue;
       add(next, depth + 1);
       std::vector<std::size_t> rest;
       for (std::size_t d = c + 1; d < cands.size(); ++d)
         if (std::binary_search(later[k].begin(), later[k].end(), cands[d])) rest.push_back(cands[d]);
-      if (!rest.empty()) walk(next, depth + 1, rest);
+      if (!rest.empty()) walk(next, depth + 1, rest, first);
     }
   }
   void add(const ExactPolytope& p, std::size_t depth) {
@@ -47,24 +55,18 @@ struct NerveWalk {
   }
 };
 
-}  // namespace
-
-UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error) {
+UnionVolume sum_over_nerve(const std::vector<ExactPolytope>& polys, const std::vector<std::vector<std::size_t>>& later,
+                           const std::vector<std::vector<const ExactPolytope*>>* pair_region,
+                           double max_relative_error) {
   UnionVolume out;
   const std::size_t n = polys.size();
-  std::vector<CGAL::Bbox_3> boxes(n);
-  for (std::size_t i = 0; i < n; ++i) boxes[i] = bbox(polys[i]);
-  std::vector<std::vector<std::size_t>> later(n);  // box-overlapping neighbours with larger index
-  for (auto [i, j] : box_overlap_pairs(boxes))
-    if (!polys[i].empty() && !polys[j].empty()) later[i].push_back(j);
-  for (auto& l : later) std::sort(l.begin(), l.end());
   for (bool exact : {false, true}) {
     out.terms = out.max_clique = 0;
-    NerveWalk w{polys, later, exact, out};
+    NerveWalk w{polys, later, pair_region, exact, out};
     for (std::size_t i = 0; i < n; ++i) {
       if (polys[i].empty()) continue;
       w.add(polys[i], 1);
-      if (!later[i].empty()) w.walk(polys[i], 1, later[i]);
+      if (!later[i].empty()) w.walk(polys[i], 1, later[i], i);
     }
     if (!exact) {
       double lo = w.sum_interval.inf(), hi = w.sum_interval.sup();
@@ -78,6 +80,34 @@ UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_rel
     }
   }
   return out;
+}
+
+}  // namespace
+
+UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error) {
+  const std::size_t n = polys.size();
+  std::vector<CGAL::Bbox_3> boxes(n);
+  for (std::size_t i = 0; i < n; ++i) boxes[i] = bbox(polys[i]);
+  std::vector<std::vector<std::size_t>> later(n);  // box-overlapping neighbours with larger index
+  for (auto [i, j] : box_overlap_pairs(boxes))
+    if (!polys[i].empty() && !polys[j].empty()) later[i].push_back(j);
+  for (auto& l : later) std::sort(l.begin(), l.end());
+  return sum_over_nerve(polys, later, nullptr, max_relative_error);
+}
+
+UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>& overlaps,
+                         double max_relative_error) {
+  // Only pairs with a common interior can start a non-empty term, and their intersections are
+  // already known: the walk starts from them.
+  std::vector<std::vector<std::pair<std::size_t, const ExactPolytope*>>> by_first(polys.size());
+  for (const auto& o : overlaps) by_first[o.i].push_back({o.j, &o.region});
+  std::vector<std::vector<std::size_t>> later(polys.size());
+  std::vector<std::vector<const ExactPolytope*>> region(polys.size());
+  for (std::size_t i = 0; i < polys.size(); ++i) {
+    std::sort(by_first[i].begin(), by_first[i].end());
+    for (const auto& [j, r] : by_first[i]) later[i].push_back(j), region[i].push_back(r);
+  }
+  return sum_over_nerve(polys, later, &region, max_relative_error);
 }
 
 }  // namespace dcshell

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <map>
 #include <numeric>
 
@@ -90,7 +91,9 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   std::vector<Mesh> hull_mesh(n);
   RemeshOptions remesh_opt;
   remesh_opt.iterations = opt.simplify_iterations;
-  remesh_opt.max_volume_increase = opt.max_volume_increase;
+  // Hulls are remeshed before cutting and shells after: each stage may grow its input by
+  // sqrt(1 + R) - 1, so the two together stay near R (the paper's 5% is one bound).
+  remesh_opt.max_volume_increase = std::sqrt(1.0 + opt.max_volume_increase) - 1.0;
   for (std::size_t i = 0; i < n; ++i) {
     progress("hulls", i, n);
     original[i] = exact_hull(parts[i].points, int(i));
@@ -238,7 +241,8 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     res.shells_volume += res.shells[k].volume;
   }
   clock.lap("certify");
-  res.union_volume = union_volume(original).value;
+  // Without remeshing the overlaps are those of the original hulls: reuse them.
+  res.union_volume = (opt.simplify_iterations > 0 ? union_volume(original) : union_volume(original, overlaps)).value;
   res.volume_loss = res.union_volume > 0 ? (res.union_volume - res.shells_volume) / res.union_volume : 0.0;
   clock.lap("volume");
   return res;

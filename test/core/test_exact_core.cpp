@@ -75,6 +75,15 @@ BOOST_AUTO_TEST_CASE(union_of_known_boxes) {
   UnionVolume e = union_volume(p, -1.0);
   BOOST_TEST(e.exact_fallback);
   BOOST_TEST(e.value == expect);
+  // Reusing the pairwise intersections of find_overlaps: the same terms and the same sum, also
+  // with a fourth box that only touches the others (no term).
+  p.push_back(exact_hull(box_points(2.5, 0, 0, 3, 1, 1)));
+  const std::vector<Overlap> o = find_overlaps(p);
+  BOOST_TEST(o.size() == 3u);
+  UnionVolume r = union_volume(p, o);
+  BOOST_TEST(r.value == expect + 0.5, boost::test_tools::tolerance(1e-14));
+  BOOST_TEST(r.terms == 8u);
+  BOOST_TEST(union_volume(p, o, -1.0).value == expect + 0.5);
 }
 
 BOOST_AUTO_TEST_CASE(nested_and_duplicated_polytopes) {
