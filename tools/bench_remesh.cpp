@@ -9,6 +9,14 @@
 //    iterations of a run do not depend on N),
 // and the wall time of remeshing all hulls with the paper's setting (10 iterations, 5%), median
 // of --repeat runs. Writes a Markdown table to stdout and one SVG plot per model.
+//
+// Then the shells the pipeline delivers (build_shells, method full), what the targets are about:
+//  - plain: simplify_iterations = 0,
+//  - paper: simplify_iterations = 10, max_volume_increase = 0.05 (hulls remeshed before cutting,
+//    shells after), volume and faces compared with the plain shells,
+//  - post: the plain shells remeshed alone with the pipeline's constraints (cut planes and
+//    neighbour planes), timed (median of --repeat runs): "remeshing all shells of a model",
+//  - baseline: isotropic remeshing + convex hull of each plain shell.
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 
@@ -24,10 +32,12 @@
 #include <sstream>
 
 #include "dcshell/atomic_output.h"
+#include "dcshell/build_shells.h"
 #include "dcshell/convex_hull.h"
 #include "dcshell/fatness.h"
 #include "dcshell/load_parts.h"
 #include "dcshell/remesh.h"
+#include "remesh/qp3.h"
 
 namespace fs = std::filesystem;
 namespace po = boost::program_options;
@@ -115,12 +125,15 @@ int main(int argc, char** argv) {
   const char* env = std::getenv("DCSHELL_SHARED_DATA");
   std::string data = env ? env : "../shared/data", svg_dir, only;
   int iterations = 100, repeat = 3;
+  bool hulls_on = true, shells = true;
   std::vector<double> ratios{0.01, 0.1, 1.0, 10.0};
   po::options_description opts("usage: bench_remesh [options]\n\noptions");
   opts.add_options()("help,h", "show this help")("data", po::value(&data), "shared data directory (holds composite/)")(
       "svg-dir", po::value(&svg_dir), "write remesh-<model>.svg plots here")(
       "model", po::value(&only), "only this model")("iterations", po::value(&iterations)->default_value(100), "curve length")(
-      "repeat", po::value(&repeat)->default_value(3), "timing runs (median)");
+      "repeat", po::value(&repeat)->default_value(3), "timing runs (median)")(
+      "hulls", po::value(&hulls_on)->default_value(true), "hull table and plots")(
+      "shells", po::value(&shells)->default_value(true), "shell table (runs the pipeline)");
   po::variables_map vm;
   po::store(po::parse_command_line(argc, argv, opts), vm);
   po::notify(vm);
@@ -138,9 +151,10 @@ int main(int argc, char** argv) {
     if (e.is_directory() && (only.empty() || e.path().filename() == only)) models.push_back(e.path());
   std::sort(models.begin(), models.end());
 
-  std::cout << "| model | hulls | faces | fatness plain | baseline | ours 10 it, 5% (faces, vol +) | ours at " << iterations
+  if (hulls_on) std::cout << "| model | hulls | faces | fatness plain | baseline | ours 10 it, 5% (faces, vol +) | ours at " << iterations
             << " it: 1% | 10% | 100% | 1000% | gain at 5% | time 10 it, 5% (s) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const fs::path& dir : models) {
+    if (!hulls_on) break;
     std::vector<std::string> warnings;
     const auto parts = load_parts({dir.string()}, warnings);
     std::vector<Mesh> hulls;
@@ -200,6 +214,53 @@ int main(int argc, char** argv) {
     if (!svg_dir.empty())
       write_file_atomically((fs::path(svg_dir) / ("remesh-" + name + ".svg")).string(),
                             [&](std::ostream& os) { os << svg_plot(name, ratios, curves, plain.value(), base.value()); });
+  }
+  if (!shells) return 0;
+  std::cout << "\n| model | shells | faces plain | fatness plain | baseline | paper pipeline (faces, vol +) | gain | post-only (faces, vol +) | gain | time post-only (s) |\n"
+               "|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const fs::path& dir : models) {
+    std::vector<std::string> warnings;
+    const auto parts = load_parts({dir.string()}, warnings);
+    ShellOptions so;
+    const ShellResult plain = build_shells(parts, so);
+    so.simplify_iterations = 10;
+    so.max_volume_increase = 0.05;
+    const ShellResult paper = build_shells(parts, so);
+    FatSum f0, fb, f1, f2;
+    std::size_t n0 = 0, n1 = 0, n2 = 0;
+    std::vector<Mesh> meshes;
+    for (const auto& s : plain.shells) {
+      f0.add(s.mesh);
+      fb.add(baseline(s.mesh));
+      n0 += s.mesh.number_of_faces();
+      meshes.push_back(s.mesh);
+    }
+    for (const auto& s : paper.shells) f1.add(s.mesh), n1 += s.mesh.number_of_faces();
+    // The pipeline's constraints for its shells: neighbour planes and the shell's own cuts.
+    std::vector<ShellConstraints> cons = neighbour_constraints(meshes);
+    for (std::size_t k = 0; k < meshes.size(); ++k)
+      for (const auto& c : plain.shells[k].cuts) cons[k].cut_planes.push_back(c.plane);
+    std::vector<double> times;
+    std::vector<Mesh> post;
+    const std::size_t all0 = remesh_detail::all_solves(), exact0 = remesh_detail::exact_solves();
+    for (int r = 0; r < repeat; ++r) {
+      post.clear();
+      const auto t0 = std::chrono::steady_clock::now();
+      for (std::size_t k = 0; k < meshes.size(); ++k) post.push_back(remesh_convex_shell(meshes[k], cons[k], RemeshOptions{}));
+      times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    }
+    std::sort(times.begin(), times.end());
+    std::fprintf(stderr, "%s: post-only remesh solved %zu LPs/QPs, %zu of them exactly\n", dir.filename().string().c_str(),
+                 remesh_detail::all_solves() - all0, remesh_detail::exact_solves() - exact0);
+    double v2 = 0;
+    for (const Mesh& m : post) f2.add(m), n2 += m.number_of_faces(), v2 += CGAL::to_double(PMP::volume(m));
+    const bool ok = certify(post).certified();
+    std::printf("| %s | %zu | %zu | %.4f | %.4f | %.4f (%zu, %+.2f%%) | %+.1f%% | %.4f (%zu, %+.2f%%)%s | %+.1f%% | %.3f |\n",
+                dir.filename().string().c_str(), plain.shells.size(), n0, f0.value(), fb.value(), f1.value(), n1,
+                100 * (paper.shells_volume / plain.shells_volume - 1), 100 * (f1.value() / f0.value() - 1), f2.value(), n2,
+                100 * (v2 / plain.shells_volume - 1), ok ? "" : " NOT CERTIFIED", 100 * (f2.value() / f0.value() - 1),
+                times[times.size() / 2]);
+    std::fflush(stdout);
   }
   return 0;
 }

@@ -1,4 +1,4 @@
-// The only translation unit that instantiates CGAL's QP solver (see qp3.h).
+// The only translation unit that instantiates CGAL's QP solver (see qp3.h): the exact fallback.
 #include "remesh/qp3.h"
 
 #include <CGAL/Gmpzf.h>
@@ -33,13 +33,13 @@ std::optional<Eigen::Vector3d> extract(const Solution& s) {
 
 }  // namespace
 
-std::optional<Eigen::Vector3d> solve_lp3(const Eigen::Vector3d& c, const std::vector<Row>& rows) {
+std::optional<Eigen::Vector3d> solve_lp3_exact(const Eigen::Vector3d& c, const std::vector<Row>& rows) {
   Program p = make_program(rows);
   for (int j = 0; j < 3; ++j) p.set_c(j, c[j]);
   return extract(CGAL::solve_linear_program(p, CGAL::Gmpzf()));
 }
 
-std::optional<Eigen::Vector3d> solve_qp3(const Eigen::Vector3d& target, const std::vector<Row>& rows) {
+std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, const std::vector<Row>& rows) {
   // |y - t|^2 = y·y - 2 t·y + t·t; CGAL minimises y'Dy + c'y + c0 and set_d sets 2D.
   Program p = make_program(rows);
   for (int j = 0; j < 3; ++j) {

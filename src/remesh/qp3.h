@@ -1,8 +1,9 @@
 // Private to the remesh module: the small LPs and QPs of the progressive hull and of the
 // constrained smoothing, in three variables. CGAL's QP solver is instantiated only in qp3.cpp
-// (template-heavy); this header is plain data.
+// (template-heavy); the floating-point solver is in solve3.cpp; this header is plain data.
 #pragma once
 #include <Eigen/Core>
+#include <cstddef>
 #include <optional>
 #include <vector>
 
@@ -14,12 +15,24 @@ struct Row {
   double b;
 };
 
-/// argmin c·y subject to every row; nullopt when infeasible or unbounded.
-/// Solved exactly (CGAL::Gmpzf) on the double coefficients and rounded to doubles: the caller
-/// re-checks the rounded point exactly against what it actually needs.
+/// argmin c·y subject to every row; nullopt when infeasible or unbounded. Rows are expected with
+/// unit normals and O(1) coefficients (a local frame). Solved in floating point by enumerating
+/// the candidate active sets (three variables: at most three active rows), the answer accepted
+/// only with its optimality certificate (feasible within 1e-12, KKT multipliers >= 0); anything
+/// else goes to the exact solver below. Either way the caller re-checks the rounded point
+/// exactly against what it actually needs, so the floating-point path costs no guarantee.
 std::optional<Eigen::Vector3d> solve_lp3(const Eigen::Vector3d& c, const std::vector<Row>& rows);
 
-/// argmin |y - target|^2 subject to every row; nullopt when infeasible. Same exactness note.
+/// argmin |y - target|^2 subject to every row; nullopt when infeasible. Same method and note.
 std::optional<Eigen::Vector3d> solve_qp3(const Eigen::Vector3d& target, const std::vector<Row>& rows);
+
+/// The same programs solved exactly (CGAL::Gmpzf, about 1 ms each) on the double coefficients
+/// and rounded to doubles: the fallback of the two above.
+std::optional<Eigen::Vector3d> solve_lp3_exact(const Eigen::Vector3d& c, const std::vector<Row>& rows);
+std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, const std::vector<Row>& rows);
+
+/// How many programs were solved, and how many took the exact fallback (process-wide; for benchmarks).
+std::size_t all_solves();
+std::size_t exact_solves();
 
 }  // namespace dcshell::remesh_detail

@@ -90,7 +90,15 @@ std::size_t Workspace::regularise_sweep(const std::vector<Point3>& enclose, cons
         const double mg = margin * scale_margin;
         std::vector<Row> base;
         for (const Row& r : convex_rows) base.push_back({r.a, r.b - std::clamp(r.b / 2, 0.0, mg)});
-        add_constraint_rows(constraints, frame, mg, base);
+        // Constraint rows likewise: a cut-face vertex lies within rounding of its cut plane, and a
+        // full margin would pin it (nothing in the thin slab left feasible).
+        std::vector<Row> con;
+        add_constraint_rows(constraints, frame, 0, con);
+        Eigen::Vector3d tight = Eigen::Vector3d::Zero();  // normal of a constraint the vertex nearly touches
+        for (const Row& r : con) {
+          if (r.b < mg) tight = r.a;
+          base.push_back({r.a, r.b - std::clamp(r.b / 2, 0.0, mg)});
+        }
         if (std::isfinite(room)) {
           const Eigen::Vector3d a = grad * frame.scale;
           const double len = a.norm();
@@ -124,9 +132,22 @@ std::size_t Workspace::regularise_sweep(const std::vector<Point3>& enclose, cons
         if (y->norm() < 1e-12 || w == mesh.point(v)) { stays = true; break; }  // already where it should be
         const double dv = volume_change(mesh, s, w);
         if (volume + dv > max_volume && dv > 0) continue;
-        if (!replacement_is_valid(mesh, s, w, enclose, constraints)) continue;
-        mesh.point(v) = w;
-        volume += dv;
+        // Against a nearly touched constraint, the slab is about one rounding unit thick: nearby
+        // doubles across it are tried too, each checked exactly.
+        Point3 ok_w = w;
+        bool valid = replacement_is_valid(mesh, s, w, enclose, constraints);
+        if (!valid && tight.squaredNorm() > 0) {
+          const double ulp = std::ldexp(1.0, -52) * vec(w).lpNorm<Eigen::Infinity>();
+          for (double k : {-1.0, -2.0, 1.0, -4.0}) {
+            ok_w = pt(vec(w) + k * ulp * tight);
+            if ((valid = replacement_is_valid(mesh, s, ok_w, enclose, constraints))) break;
+          }
+        }
+        if (!valid) continue;
+        const double dv_applied = ok_w == w ? dv : volume_change(mesh, s, ok_w);
+        if (volume + dv_applied > max_volume && dv_applied > 0) continue;
+        mesh.point(v) = ok_w;
+        volume += dv_applied;
         moved = true;
         touched(s, v);
         // A small step means it has (nearly) converged: leave it until its neighbourhood changes.

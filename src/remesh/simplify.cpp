@@ -17,6 +17,9 @@ using namespace remesh_detail;
 // LP margins in local units (a fraction of the edge's scale): the LP's optimum lies on some of
 // its planes, and a margin keeps the rounded point on the right side of them.
 constexpr double kMargin = 1e-9;
+// Faces whose corners lie this close (local units) to a constraint plane are "nearly flat"
+// against it: far above the rounding of a cut face's vertices, far below any real feature.
+constexpr double kNearFlat = 1e-10;
 
 // A removed end point is a free position when it lies exactly on the plane of every face around
 // the other end point (a flat neighbourhood): no volume is added.
@@ -94,26 +97,91 @@ Candidate best_position(const Mesh& m, const Star& s, const ShellConstraints& co
     }
     return false;
   };
+  // A cut face rounded to doubles lies within rounding of its cut plane, so the faces of such a
+  // nearly flat neighbourhood and the plane leave w a slab about one rounding unit thick: rows of
+  // faces lying within kNearFlat of a constraint plane get no margin, nor does that constraint's
+  // row, and nearby doubles are tried against the exact check below.
+  std::vector<Row> con0;
+  add_constraint_rows(constraints, frame, 0, con0);
+  std::vector<char> con_near(con0.size(), 0);
+  bool near_flat = false;
+  // A face is nearly flat against a constraint when its three corners are within kNearFlat of
+  // the constraint's plane (its own normal may be far off when it is a sliver).
+  auto near_constraint = [&](const Point3& p, const Point3& q, const Point3& r) {
+    bool near = false;
+    for (std::size_t k = 0; k < con0.size(); ++k) {
+      bool all = true;
+      for (const Point3* x : {&p, &q, &r}) all = all && std::abs(con0[k].a.dot(frame.to_local(vec(*x))) - con0[k].b) < kNearFlat;
+      if (all) con_near[k] = 1, near = true;
+    }
+    near_flat = near_flat || near;
+    return near;
+  };
   std::vector<Row> rows;
+  auto add_row = [&](const Point3& p, const Point3& q, const Point3& r, bool flat) {
+    std::vector<Row> r0;
+    add_below_row(p, q, r, frame, 0, r0);
+    if (r0.empty()) return;
+    if (!flat && !near_constraint(p, q, r)) r0[0].b -= margin;
+    rows.push_back(r0[0]);
+  };
   Eigen::Vector3d objective = Eigen::Vector3d::Zero();
   for (F f : s.faces) {
     H h = m.halfedge(f);
     const Point3 &a = m.point(m.source(h)), &b = m.point(m.target(h)), &c = m.point(m.target(m.next(h)));
-    add_below_row(a, c, b, frame, is_flat(f) ? 0 : margin, rows);  // on or above: each new tetrahedron adds volume
+    add_row(a, c, b, is_flat(f));  // on or above: each new tetrahedron adds volume
     objective += (vec(b) - vec(a)).cross(vec(c) - vec(a));  // gradient of the added volume (x6)
   }
   for (std::size_t i = 0; i < nr; ++i)  // below the faces across the ring: convex there
-    add_below_row(m.point(s.ring[(i + 1) % nr]), m.point(s.ring[i]), m.point(s.across[i]), frame,
-                  flat_edge[i] ? 0 : margin, rows);
+    add_row(m.point(s.ring[(i + 1) % nr]), m.point(s.ring[i]), m.point(s.across[i]), flat_edge[i]);
   // The margin keeps the rounded optimum strictly on the right side of every other plane; in a
   // flat region the exact check decides whether the rounded point stayed on the plane.
-  add_constraint_rows(constraints, frame, margin, rows);
-  if (auto y = solve_lp3(objective.normalized(), rows)) {
-    const Point3 w = pt(frame.to_world(*y));
-    if (fatter_only && local_fatness_cone(m, s, w) < local_fatness_star(m, s)) return best;
-    return {true, volume_change(m, s, w), w};
+  for (std::size_t k = 0; k < con0.size(); ++k) rows.push_back({con0[k].a, con0[k].b - (con_near[k] ? 0 : margin)});
+  // Nearly flat neighbourhoods (a cut face within rounding of its plane, or input facets flat up
+  // to the rounding of the file's digits) leave w a slab thinner than the margins: the LP is then
+  // solved without margins and nearby doubles across the slab (along the constraint's normal, or
+  // the outward direction) are tried against the exact check.
+  bool exact_needed = near_flat;
+  std::optional<Eigen::Vector3d> y = solve_lp3(objective.normalized(), rows);
+  if (!y) {
+    std::vector<Row> bare;
+    for (F f : s.faces) {
+      H h = m.halfedge(f);
+      add_below_row(m.point(m.source(h)), m.point(m.target(m.next(h))), m.point(m.target(h)), frame, 0, bare);
+    }
+    for (std::size_t i = 0; i < nr; ++i)
+      add_below_row(m.point(s.ring[(i + 1) % nr]), m.point(s.ring[i]), m.point(s.across[i]), frame, 0, bare);
+    bare.insert(bare.end(), con0.begin(), con0.end());
+    y = solve_lp3(objective.normalized(), bare);
+    exact_needed = true;
   }
-  return best;
+  if (!y) return best;
+  Point3 w = pt(frame.to_world(*y));
+  if (exact_needed) {
+    Eigen::Vector3d n = objective.normalized();
+    for (std::size_t k = 0; k < con0.size(); ++k)
+      if (con_near[k]) { n = con0[k].a; break; }
+    const Eigen::Vector3d w0 = vec(w);
+    const double ulp = std::ldexp(1.0, -52) * w0.lpNorm<Eigen::Infinity>();  // about one unit in the last place
+    bool found = false;
+    // Cheap necessary conditions first (the removed vertices under the cone, the constraints):
+    // most nearby doubles fail one of them, and the full check costs a pass over the mesh.
+    auto plausible = [&](const Point3& c) {
+      if (!constraints.satisfied_by(c)) return false;
+      for (V r : s.removed)
+        for (std::size_t i = 0; i < nr; ++i)
+          if (CGAL::orientation(c, m.point(s.ring[i]), m.point(s.ring[(i + 1) % nr]), m.point(r)) == CGAL::POSITIVE)
+            return false;
+      return true;
+    };
+    for (double k : {0.0, -1.0, 1.0, -2.0, 2.0, -4.0, 4.0}) {
+      const Point3 c = pt(w0 + k * ulp * n);
+      if (plausible(c) && replacement_is_valid(m, s, c, {}, constraints)) { w = c; found = true; break; }
+    }
+    if (!found) return best;
+  }
+  if (fatter_only && local_fatness_cone(m, s, w) < local_fatness_star(m, s)) return best;
+  return {true, volume_change(m, s, w), w};
 }
 
 struct Entry {
