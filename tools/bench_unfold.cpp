@@ -1,10 +1,13 @@
 // Benchmark of the unfolder (issue 5 §6). Inputs: every model of DATA/convex, the convex hulls
 // of every part of every DATA/composite model, and the paper's shells in DATA/paper-output.
 // Per input and heuristic: median time, overlap-free, cut length, net hull area; the GA's
-// improvement over the first net and over the best heuristic; the folding check. Writes a
-// Markdown report (tables + summary) to --out (default: stdout).
+// improvement over the first net and over the best heuristic. With --shells DIR (DIR/<Model>/
+// shell_*.obj, as written by `dcshell shell`): per composite model, the median total time of the
+// default unfolding plus the folding check of all its DC-shells. Writes a Markdown report
+// (tables + summary) to --out (default: stdout).
 //
-// usage: bench_unfold [--data DIR] [--out FILE] [--repeat N] [--max-faces N] [--no-ga]
+// usage: bench_unfold [--data DIR] [--shells DIR] [--out FILE] [--repeat N] [--max-faces N]
+//                     [--only NAME,...] [--no-ga]
 #include <boost/program_options.hpp>
 
 #include <algorithm>
@@ -73,16 +76,66 @@ std::vector<std::string> mesh_files(const fs::path& dir) {
   return out;
 }
 
+// Per composite model: the default unfolding (best/hull, which folding-checks its best nets)
+// plus, for nets it did not check, check_folding: the total over all the model's DC-shells,
+// median of `repeat` runs. This is what `dcshell unfold DIR/<Model>` does, minus file output.
+std::string shells_report(const std::string& dir, int repeat) {
+  std::ostringstream os;
+  if (dir.empty() || !fs::is_directory(dir)) return os.str();
+  os << "DC-shells of the composite models (`dcshell shell` output): default unfold + folding check of every shell, "
+     << "total per model, median of " << repeat << " runs:\n\n| model | shells | faces | overlap-free | fold verified | "
+     << "unfold + fold check, total | unfold only (no fold check) |\n|---|---|---|---|---|---|---|\n";
+  std::vector<std::string> models;
+  for (auto& e : fs::directory_iterator(dir))
+    if (e.is_directory()) models.push_back(e.path().filename().string());
+  std::sort(models.begin(), models.end());
+  for (auto& m : models) {
+    std::vector<Mesh> shells;
+    for (auto& f : mesh_files(fs::path(dir) / m))
+      if (fs::path(f).filename().string().rfind("shell_", 0) == 0) shells.push_back(read_mesh(f));
+    if (shells.empty()) continue;
+    int faces = 0, ok = 0, verified = 0;
+    std::vector<double> totals, folds;
+    for (int r = 0; r < repeat; ++r) {
+      ok = verified = faces = 0;
+      double tot = 0, fold = 0;
+      for (auto& mesh : shells) {
+        auto t0 = std::chrono::steady_clock::now();
+        UnfoldStats st;
+        Net net = unfold_convex_mesh(mesh, UnfoldOptions{}, &st);
+        FoldCheckResult fc = st.fold_checks > 0 ? st.fold : check_folding(net);
+        auto t1 = std::chrono::steady_clock::now();
+        UnfoldOptions nets_only;
+        nets_only.fold_candidates = 0;
+        unfold_convex_mesh(mesh, nets_only);
+        auto t2 = std::chrono::steady_clock::now();
+        tot += std::chrono::duration<double>(t1 - t0).count();
+        fold += std::chrono::duration<double>(t2 - t1).count();
+        faces += st.faces;
+        ok += st.result.overlapping_pairs == 0;
+        verified += fc.verified;
+      }
+      totals.push_back(tot), folds.push_back(fold);
+    }
+    os << "| " << m << " | " << shells.size() << " | " << faces << " | " << ok << " | " << verified << " | "
+       << fmt(median(totals) * 1000, 3) << " ms | " << fmt(median(folds) * 1000, 3) << " ms |\n";
+    std::cerr << m << ": " << fmt(median(totals) * 1000, 3) << " ms\n";
+  }
+  return os.str() + "\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string data = "../shared/data", out;
+  std::string data = "../shared/data", out, shells_dir, only;
   int repeat = 3;
   int max_faces = 1 << 30;
   po::options_description opts("bench_unfold options");
   opts.add_options()("help,h", "help")("data", po::value(&data), "shared data directory")(
       "out", po::value(&out), "Markdown report file (default stdout)")("repeat", po::value(&repeat), "runs per timing (median)")(
-      "max-faces", po::value(&max_faces), "skip larger inputs")("no-ga", "skip the genetic search");
+      "max-faces", po::value(&max_faces), "skip larger inputs")("no-ga", "skip the genetic search")(
+      "only", po::value(&only), "comma-separated input names (file stems) to run; default all")(
+      "shells", po::value(&shells_dir), "directory of DC-shell sets DIR/<Model>/shell_*.obj (per-model totals)");
   po::variables_map vm;
   po::store(po::parse_command_line(argc, argv, opts), vm);
   po::notify(vm);
@@ -139,20 +192,26 @@ int main(int argc, char** argv) {
     configs.push_back({"ga/cut", UnfoldHeuristic::ga, UnfoldObjective::cut_length});
   }
 
+  auto selected = [&](const std::string& name) {
+    if (only.empty()) return true;
+    std::istringstream is(only);
+    for (std::string item; std::getline(is, item, ',');)
+      if (item == name) return true;
+    return false;
+  };
   std::ostringstream table, summary;
   table << "| set | input | faces | facets |";
   for (auto& c : configs) table << " " << c.label << " |";
-  table << " fold check (best/hull) |\n|---|---|---|---|";
-  for (std::size_t i = 0; i <= configs.size(); ++i) table << "---|";
+  table << "\n|---|---|---|---|";
+  for (std::size_t i = 0; i < configs.size(); ++i) table << "---|";
   table << "\n";
 
   std::map<std::string, int> ok_count, ok_count69;
   std::map<std::string, std::vector<double>> hull_gain, cut_gain;  // GA vs first / vs best heuristic
-  std::map<std::string, double> model_time;                         // per composite set: unfold + fold check
-  int n69 = 0, fold_verified = 0, fold_total = 0;
+  int n69 = 0, total = 0;
   for (auto& in : inputs) {
     int nf = static_cast<int>(in.mesh.number_of_faces());
-    if (nf > max_faces) continue;
+    if (nf > max_faces || !selected(in.name)) continue;
     bool in69 = in.set == "convex" || in.set == "hull:Bulbasaur" || in.set == "hull:Squirtle" || in.set == "hull:Cow";
     n69 += in69;
     std::cerr << in.set << " " << in.name << " (" << nf << " faces)\n";
@@ -163,9 +222,9 @@ int main(int argc, char** argv) {
       UnfoldOptions o;
       o.heuristic = c.h;
       o.objective = c.o;
-      // Only the default configuration picks among candidates by the folding check.
-      if (c.label != "best/hull") o.fold_candidates = 0;
-      int rep = (c.h == UnfoldHeuristic::ga || nf > 5000) ? 1 : repeat;
+      // Nets only: the folding check is timed with the DC-shells below.
+      o.fold_candidates = 0;
+      int rep = c.h == UnfoldHeuristic::ga ? 1 : repeat;
       Run r = timed(rep, [&](UnfoldStats* st) { return unfold_convex_mesh(in.mesh, o, st); });
       if (c.label == "steepest") table << " " << r.stats.facets << " |";
       bool okk = r.stats.result.overlapping_pairs == 0;
@@ -175,15 +234,9 @@ int main(int argc, char** argv) {
             << ", hull " << fmt(r.stats.result.hull_area) << " |";
       runs[c.label] = std::move(r);
     }
-    // Folding check of the default net; the composite sets' totals include unfolding.
-    // (its time is part of the best/hull unfolding time, which picks the net by this check).
-    const auto& fc = runs["best/hull"].stats.fold;
-    double fsec = 0;
-    fold_verified += fc.verified;
-    ++fold_total;
-    table << " " << (fc.verified ? "verified" : "NOT verified") << ", " << fc.steps << " steps, " << runs["best/hull"].stats.fold_checks << " nets checked |\n";
+    ++total;
+    table << "\n";
     std::cerr << table.str().substr(row_start) << std::flush;  // rows as they come, for long runs
-    if (in.set != "convex") model_time[in.set] += runs["best/hull"].seconds + fsec;
     if (ga) {
       auto& gh = runs["ga/hull"].stats;
       auto& gc = runs["ga/cut"].stats;
@@ -196,12 +249,9 @@ int main(int argc, char** argv) {
 
   summary << "## Summary\n\n";
   summary << "Overlap-free nets (one piece by construction), per heuristic, on the issue's " << n69
-          << " inputs (34 convex models + hulls of Bulbasaur, Squirtle, Cow parts) / on all " << fold_total << " inputs:\n\n";
-  for (auto& c : configs) summary << "- " << c.label << ": " << ok_count69[c.label] << " / " << n69 << "; all: " << ok_count[c.label] << " / " << fold_total << "\n";
-  summary << "\nFolding check of the default net (best/hull): verified on " << fold_verified << " / " << fold_total
-          << " (up to 6 best nets checked per input; the first verified one is kept).\n\n";
-  summary << "Unfold (best/hull, including its folding checks) of all shells of a composite set, total:\n\n";
-  for (auto& [set, s] : model_time) summary << "- " << set << ": " << fmt(s * 1000, 3) << " ms\n";
+          << " inputs (34 convex models + hulls of Bulbasaur, Squirtle, Cow parts) / on all " << total << " inputs:\n\n";
+  for (auto& c : configs) summary << "- " << c.label << ": " << ok_count69[c.label] << " / " << n69 << "; all: " << ok_count[c.label] << " / " << total << "\n";
+  summary << "\n" << shells_report(shells_dir, repeat);
   if (ga) {
     auto stats = [](const std::vector<double>& v) {
       std::ostringstream os;

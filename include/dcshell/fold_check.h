@@ -1,14 +1,23 @@
 // Continuous folding check: every fold angle goes linearly from 0 (the flat net) to its shell
 // angle (a straight line in configuration space, t in [0, 1]); is the motion free of
-// self-intersection?
+// self-intersection? Method and argument: doc/fold_check.md.
 //
-// Faces that share no shell vertex are checked conservatively: from time t the step dt is
-// bounded so that no point can travel farther than the current separation of any candidate
-// pair (speed of a point <= sum over the folds above its face of |angle| x distance to the fold
-// axis). Candidate pairs come from CGAL::box_self_intersection_d on boxes inflated by that
-// travel bound. Faces that share a shell vertex touch by design; they are checked at every step
-// (sampled, not continuous) for contact away from the shared vertices and edge.
-// Faces joined by flat folds move as one rigid piece and are never tested against each other.
+// Faces joined by (near) flat folds move as one rigid planar piece; each piece is represented by
+// the convex hull of its net corners (which contains it). Every pair of pieces is proved
+// disjoint over the whole path by one of:
+//  - hinge: pieces turning about one common line (a fold, or two common fixed corners) on
+//    opposite sides of it never meet off that line while the turn stays below pi;
+//  - conservative advancement: from state t, two pieces at distance d cannot meet before
+//    t + d / (bound on their relative speed) (levers grow with the travel, accounted for);
+//  - cone test: pieces that keep a common corner v lie in their angular wedges at v; while the
+//    wedges' arcs on the unit sphere around v are apart, the pieces meet only at v; the arcs
+//    advance by arc distance / (sum of the angular speeds between them);
+//  - end window: pieces that touch in the folded shell are separated near t = 1 by the plane of
+//    one of them: every other corner stays strictly inside it, proved for the touching corners
+//    from their exact velocity at t = 1 and a bound on the acceleration (Taylor, order 2).
+// It never verifies a path along which two pieces come closer than `tolerance` x net size (or
+// poke through a separating plane by more than that) other than at corners they share on their
+// fold lines. It reports the first state where it cannot proceed, with the two faces.
 #pragma once
 #include <Eigen/Core>
 #include <array>
@@ -20,9 +29,12 @@
 namespace dcshell {
 
 struct FoldCheckOptions {
-  /// Smallest step; a pair closer than this allows is reported as a contact (not verified).
-  double min_step = 1e-7;
-  int max_steps = 5000;
+  /// Smallest step; a pair that forces a smaller one is reported (not verified).
+  double min_step = 1e-9;
+  int max_steps = 100000;
+  /// Contact tolerance relative to the net size (diagonal of its bounding box): closer than this
+  /// counts as a collision; it also absorbs floating-point rounding of the folded coordinates.
+  double tolerance = 1e-9;
 };
 
 struct FoldCheckResult {
@@ -31,6 +43,8 @@ struct FoldCheckResult {
   double t = 1;               ///< where the check stopped (1 when verified)
   int face_a = -1, face_b = -1;  ///< the colliding (or too close) faces when not verified
   std::string message;        ///< why not verified; empty when verified
+  int pieces = 0;             ///< rigid pieces (faces joined by flat folds)
+  int pairs = 0;              ///< pairs of pieces examined (candidates at some step)
 };
 
 FoldCheckResult check_folding(const Net& net, const FoldCheckOptions& options = {});

@@ -34,9 +34,9 @@ struct UnfoldOptions {
   UnfoldHeuristic heuristic = UnfoldHeuristic::best;
   UnfoldObjective objective = UnfoldObjective::hull_area;
   std::uint64_t seed = 1;
-  /// Cut trees tried per heuristic; 0 = automatic (many for small shells, few for large ones,
-  /// so a shell costs about the same whatever its size). A count, not a time, so results do not
-  /// depend on the machine.
+  /// Cut trees tried per heuristic; 0 = automatic: a small budget (up to 12 for the smallest
+  /// shells, 1 from 100 faces on; retries go on while no net is overlap-free). A count, not a
+  /// time, so results do not depend on the machine.
   int tries = 0;
   /// |fold angle| (radians) at or below which an edge counts as flat: never cut, and not a
   /// reflex edge either. Files round coordinates (the shared convex models are up to 1.5e-5 rad
@@ -56,7 +56,11 @@ struct NetMetrics {
 };
 
 struct UnfoldStats {
-  int faces = 0, facets = 0;  ///< triangles; maximal coplanar regions
+  int faces = 0, facets = 0;  ///< triangles; maximal coplanar regions (at flat_angle)
+  /// The flat angle used: options.flat_angle, or 10x / 100x it (at most 0.01 rad) when no
+  /// overlap-free net exists until nearly flat folds are merged too (net lengths then match the
+  /// shell's to about flat_angle^2 relative, not to rounding).
+  double flat_angle = 0;
   bool convex = true;         ///< no reflex edge beyond flat_angle (closed genus 0 is required)
   int reflex_edges = 0;
   double max_reflex_angle = 0;  ///< radians

@@ -192,7 +192,7 @@ int run_unfold(int argc, char** argv) {
         const auto& s = shells[k];
         json.begin_object();
         json.field("index", k).field("input", s.input).field("name", s.net.name).field("net", s.net_file);
-        json.field("faces", s.stats.faces).field("facets", s.stats.facets);
+        json.field("faces", s.stats.faces).field("facets", s.stats.facets).field("flat_angle", s.stats.flat_angle);
         json.field("convex", s.stats.convex).field("reflex_edges", s.stats.reflex_edges);
         json.field("heuristic", s.stats.heuristic).field("attempts", s.stats.attempts);
         json.field("cut_length", s.stats.result.cut_length).field("hull_area", s.stats.result.hull_area);

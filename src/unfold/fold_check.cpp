@@ -1,43 +1,55 @@
-// Continuous folding check along the straight line in configuration space (see fold_check.h).
+// Continuous folding check along the straight line in configuration space (see fold_check.h and
+// doc/fold_check.md for the argument).
 #include "dcshell/fold_check.h"
 
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/box_intersection_d.h>
-#include <CGAL/intersections.h>
-#include <CGAL/squared_distance_3.h>
 
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
-#include <numeric>
 #include <sstream>
-
-#include "dcshell/kernel.h"
+#include <stdexcept>
+#include <unordered_map>
 
 namespace dcshell {
 
 namespace {
 
-// Folds whose angle is below this move nothing visible: the faces they join are one rigid piece.
-constexpr double kRigidAngle = 1e-6;
+using Vec2 = Eigen::Vector2d;
+using Vec3 = Eigen::Vector3d;
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// Folds whose angle is below this move nothing visible: the faces they join are one rigid piece
+// (the motion itself treats them as rigid, so the piece is exactly planar along the path).
+constexpr double kRigidAngle = 1e-4;
+
+struct Rigid {
+  Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+  Vec3 tr = Vec3::Zero();
+  Vec3 operator()(const Vec3& x) const { return R * x + tr; }
+};
 
 struct Motion {
   int nf = 0;
-  std::vector<int> order;        // parents before children
+  std::vector<int> order;  // parents before children
   std::vector<int> parent;
-  std::vector<double> angle;     // fold angle of the edge to the parent (0 for the root)
-  std::vector<Eigen::Vector3d> axis_a, axis_u;  // fold axis in net coordinates (parent on the left)
-  std::vector<int> body;         // rigid piece of each face
-  std::vector<int> body_root;    // the face whose joint moves the piece
+  std::vector<double> angle;          // fold angle of the edge to the parent (0 for the root)
+  std::vector<Vec3> axis_a, axis_u;   // fold axis in net coordinates (parent on the left)
+  std::vector<int> body;              // rigid piece of each face
+  std::vector<int> body_root;         // the face whose fold moves the piece
   std::vector<std::vector<int>> body_faces;
 
   explicit Motion(const Net& net) {
     nf = static_cast<int>(net.corners.size());
     parent = net.parent;
+    if (static_cast<int>(parent.size()) != nf || static_cast<int>(net.shell_faces.size()) != nf)
+      throw std::invalid_argument("fold check: net arrays differ in size");
     angle.assign(nf, 0.0);
-    axis_a.assign(nf, Eigen::Vector3d::Zero());
-    axis_u.assign(nf, Eigen::Vector3d::UnitX());
+    axis_a.assign(nf, Vec3::Zero());
+    axis_u.assign(nf, Vec3::UnitX());
     std::map<std::pair<int, int>, double> fold_angle;
     for (const auto& e : net.edges)
       if (e.fold) fold_angle.emplace(std::make_pair(std::min(e.f0, e.f1), std::max(e.f0, e.f1)), e.fold_angle);
@@ -60,8 +72,8 @@ struct Motion {
         bool shared = (std::find(t.begin(), t.end(), a) != t.end()) && (std::find(t.begin(), t.end(), b) != t.end());
         if (!shared) continue;
         const auto &A = net.corners[p][k], &B = net.corners[p][(k + 1) % 3];
-        axis_a[f] = Eigen::Vector3d(A.x(), A.y(), 0);
-        axis_u[f] = Eigen::Vector3d(B.x() - A.x(), B.y() - A.y(), 0).normalized();
+        axis_a[f] = Vec3(A.x(), A.y(), 0);
+        axis_u[f] = Vec3(B.x() - A.x(), B.y() - A.y(), 0).normalized();
         break;
       }
     }
@@ -83,257 +95,642 @@ struct Motion {
     for (int f : order) body_faces[body[f]].push_back(f);
   }
 
-  struct Rigid {
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d tr = Eigen::Vector3d::Zero();
-    Eigen::Vector3d operator()(const Eigen::Vector3d& x) const { return R * x + tr; }
-  };
+  // The turn of a fold at state t: x -> a + Q (x - a), Q = rotation by t*angle about u.
+  // A positive angle turns the child below the plane (the outside of the shell faces +z).
+  static Rigid child_transform(const Rigid& P, const Vec3& a, const Vec3& u, double turn) {
+    Eigen::Matrix3d Q = Eigen::AngleAxisd(turn, u).toRotationMatrix();
+    Rigid T;
+    T.R = P.R * Q;
+    T.tr = P.R * (a - Q * a) + P.tr;
+    return T;
+  }
 
   // Placement of every face at time t: T_f = T_parent o rotation about the fold axis by t*angle.
-  // A positive angle turns the child below the plane (the outside of the shell faces +z).
   std::vector<Rigid> transforms(double t) const {
     std::vector<Rigid> T(nf);
     for (int f : order) {
       int p = parent[f];
       if (p < 0) continue;
-      if (std::abs(angle[f]) < kRigidAngle && body[f] == body[p]) {
-        T[f] = T[p];
-        continue;
-      }
-      Eigen::Matrix3d Q = Eigen::AngleAxisd(t * angle[f], axis_u[f]).toRotationMatrix();
-      T[f].R = T[p].R * Q;
-      T[f].tr = T[p].R * (axis_a[f] - Q * axis_a[f]) + T[p].tr;
+      T[f] = body[f] == body[p] ? T[p] : child_transform(T[p], axis_a[f], axis_u[f], t * angle[f]);
     }
     return T;
   }
 };
 
-Eigen::Vector3d lift(const Eigen::Vector2d& p) { return Eigen::Vector3d(p.x(), p.y(), 0); }
-Point3 cgal(const Eigen::Vector3d& p) { return Point3(p.x(), p.y(), p.z()); }
-using Tri3 = std::array<Eigen::Vector3d, 3>;
+Vec3 lift(const Vec2& p) { return Vec3(p.x(), p.y(), 0); }
+double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
-double triangle_distance(const Tri3& a, const Tri3& b) {
-  Epick::Triangle_3 ta(cgal(a[0]), cgal(a[1]), cgal(a[2])), tb(cgal(b[0]), cgal(b[1]), cgal(b[2]));
-  if (CGAL::do_intersect(ta, tb)) return 0;
-  double d2 = std::numeric_limits<double>::infinity();
-  for (int k = 0; k < 3; ++k) {
-    d2 = std::min(d2, CGAL::to_double(CGAL::squared_distance(cgal(a[k]), tb)));
-    d2 = std::min(d2, CGAL::to_double(CGAL::squared_distance(cgal(b[k]), ta)));
-    Epick::Segment_3 sa(cgal(a[k]), cgal(a[(k + 1) % 3]));
-    for (int j = 0; j < 3; ++j)
-      d2 = std::min(d2, CGAL::to_double(CGAL::squared_distance(sa, Epick::Segment_3(cgal(b[j]), cgal(b[(j + 1) % 3])))));
-  }
-  return std::sqrt(d2);
-}
+// A rigid piece: its faces, its place in the piece tree, and the convex hull of its net corners
+// (counter-clockwise; drops corners within `eps` of the hull boundary).
+struct Piece {
+  std::vector<int> faces;
+  int parent = -1, depth = 0;
+  double angle = 0;  // fold angle of the hinge to the parent piece
+  Vec3 hinge_a = Vec3::Zero(), hinge_u = Vec3::UnitX();  // hinge axis in net coordinates
+  std::vector<Vec2> hull;
+  std::vector<int> hull_vertex;  // shell vertex at each hull corner
+  std::vector<std::pair<int, Vec2>> corners;  // (shell vertex, net position), sorted, unique
+  Vec2 centre = Vec2::Zero();
+  double radius = 0;
+};
 
-// Faces sharing shell vertices: shrink each away from the shared corners (towards its centroid)
-// and test the rest for contact. Catches a face swinging through its neighbour.
-bool touching_pair_collides(const Tri3& a, const Tri3& b, const std::array<int, 3>& va, const std::array<int, 3>& vb) {
-  constexpr double kShrink = 1e-3;
-  auto shrink = [&](const Tri3& t, const std::array<int, 3>& v, const std::array<int, 3>& other) {
-    Eigen::Vector3d c = (t[0] + t[1] + t[2]) / 3;
-    Tri3 s = t;
-    for (int k = 0; k < 3; ++k)
-      if (std::find(other.begin(), other.end(), v[k]) != other.end()) s[k] = t[k] + kShrink * (c - t[k]);
-    return s;
+std::vector<int> convex_hull_2d(const std::vector<Vec2>& p, double eps) {
+  std::vector<int> idx(p.size());
+  for (std::size_t i = 0; i < p.size(); ++i) idx[i] = static_cast<int>(i);
+  std::sort(idx.begin(), idx.end(), [&](int a, int b) { return p[a].x() < p[b].x() || (p[a].x() == p[b].x() && p[a].y() < p[b].y()); });
+  if (idx.size() < 3) return idx;
+  std::vector<int> h(2 * idx.size());
+  int k = 0;
+  // A corner is kept only if it turns left by more than eps (distance from the chord): corners
+  // dropped are within eps of the hull, which the contact tolerance covers.
+  auto left = [&](int o, int a, int b) {
+    Vec2 d = p[b] - p[o];
+    double n = d.norm();
+    return n > 0 && cross2(p[a] - p[o], d) > eps * n;
   };
-  Tri3 sa = shrink(a, va, vb), sb = shrink(b, vb, va);
-  Epick::Triangle_3 ta(cgal(sa[0]), cgal(sa[1]), cgal(sa[2])), tb(cgal(sb[0]), cgal(sb[1]), cgal(sb[2]));
-  return CGAL::do_intersect(ta, tb);
+  for (int i : idx) {
+    while (k >= 2 && !left(h[k - 2], h[k - 1], i)) --k;
+    h[k++] = i;
+  }
+  for (int j = static_cast<int>(idx.size()) - 2, lo = k + 1; j >= 0; --j) {
+    int i = idx[j];
+    while (k >= lo && !left(h[k - 2], h[k - 1], i)) --k;
+    h[k++] = i;
+  }
+  h.resize(k - 1);
+  return h;
 }
 
-bool share_vertex(const std::array<int, 3>& a, const std::array<int, 3>& b) {
-  for (int x : a)
-    if (std::find(b.begin(), b.end(), x) != b.end()) return true;
-  return false;
+// Convex polygon in 3D at the current state: corners (counter-clockwise about n), normal.
+struct Poly {
+  std::vector<Vec3> v;
+  Vec3 n;
+};
+
+double segment_distance(const Vec3& p0, const Vec3& p1, const Vec3& q0, const Vec3& q1) {
+  Vec3 d1 = p1 - p0, d2 = q1 - q0, r = p0 - q0;
+  double a = d1.squaredNorm(), e = d2.squaredNorm(), f = d2.dot(r);
+  double s = 0, t = 0;
+  if (a <= 0 && e <= 0) return r.norm();
+  if (a <= 0) {
+    t = std::clamp(f / e, 0.0, 1.0);
+  } else {
+    double c = d1.dot(r);
+    if (e <= 0) {
+      s = std::clamp(-c / a, 0.0, 1.0);
+    } else {
+      double b = d1.dot(d2), den = a * e - b * b;
+      s = den > 0 ? std::clamp((b * f - c * e) / den, 0.0, 1.0) : 0.0;
+      t = (b * s + f) / e;
+      if (t < 0) t = 0, s = std::clamp(-c / a, 0.0, 1.0);
+      else if (t > 1) t = 1, s = std::clamp((b - c) / a, 0.0, 1.0);
+    }
+  }
+  return ((p0 + s * d1) - (q0 + t * d2)).norm();
+}
+
+bool inside_polygon(const Poly& P, const Vec3& x) {
+  const int m = static_cast<int>(P.v.size());
+  for (int i = 0; i < m; ++i)
+    if (P.n.dot((P.v[(i + 1) % m] - P.v[i]).cross(x - P.v[i])) < 0) return false;
+  return true;
+}
+
+// Distance between two convex polygons in 3D (0 when they meet): an edge of one crossing the
+// other, else the least vertex-to-face or edge-to-edge distance (where disjoint convex polygons
+// attain their distance).
+double polygon_distance(const Poly& A, const Poly& B) {
+  auto crosses = [](const Poly& P, const Poly& Q) {
+    const int m = static_cast<int>(P.v.size());
+    for (int i = 0; i < m; ++i) {
+      const Vec3 &s0 = P.v[i], &s1 = P.v[(i + 1) % m];
+      double h0 = Q.n.dot(s0 - Q.v[0]), h1 = Q.n.dot(s1 - Q.v[0]);
+      if ((h0 > 0 && h1 < 0) || (h0 < 0 && h1 > 0)) {
+        Vec3 c = s0 + (s1 - s0) * (h0 / (h0 - h1));
+        if (inside_polygon(Q, c)) return true;
+      }
+    }
+    return false;
+  };
+  if (crosses(A, B) || crosses(B, A)) return 0;
+  double d = kInf;
+  auto faces = [&](const Poly& P, const Poly& Q) {
+    for (const auto& x : P.v) {
+      Vec3 y = x - Q.n * Q.n.dot(x - Q.v[0]);
+      if (inside_polygon(Q, y)) d = std::min(d, std::abs(Q.n.dot(x - Q.v[0])));
+    }
+  };
+  faces(A, B), faces(B, A);
+  const int ma = static_cast<int>(A.v.size()), mb = static_cast<int>(B.v.size());
+  for (int i = 0; i < ma; ++i)
+    for (int j = 0; j < mb; ++j) d = std::min(d, segment_distance(A.v[i], A.v[(i + 1) % ma], B.v[j], B.v[(j + 1) % mb]));
+  return d;
+}
+
+// Great-circle arc on the unit sphere: from a, turning about n (unit) by alpha in [0, pi].
+struct Arc {
+  Vec3 a, b, n;
+  double alpha = 0;
+};
+
+double angle_between(const Vec3& x, const Vec3& y) { return std::atan2(x.cross(y).norm(), x.dot(y)); }
+
+// Does the unit vector p (on the arc's great circle) lie on the arc, widened by slack radians?
+bool on_arc(const Arc& A, const Vec3& p, double slack) {
+  double phi = std::atan2(A.n.dot(A.a.cross(p)), A.a.dot(p));
+  if (phi < -slack) phi += 2 * M_PI;
+  return phi <= A.alpha + slack;
+}
+
+double point_arc_distance(const Vec3& p, const Arc& A) {
+  Vec3 q = p - A.n * A.n.dot(p);
+  double qn = q.norm();
+  if (qn > 1e-12 && on_arc(A, q / qn, 0)) return std::asin(std::min(1.0, std::abs(A.n.dot(p))));
+  return std::min(angle_between(p, A.a), angle_between(p, A.b));
+}
+
+// Spherical distance between two arcs (0 when they meet; a slack of 1e-12 rad counts as meeting).
+double arc_distance(const Arc& A, const Arc& B) {
+  constexpr double kSlack = 1e-12;
+  Vec3 k = A.n.cross(B.n);
+  double kn = k.norm();
+  if (kn > 1e-12) {
+    k /= kn;
+    for (const Vec3& s : {k, Vec3(-k)})
+      if (on_arc(A, s, kSlack) && on_arc(B, s, kSlack)) return 0;
+  } else {
+    // One great circle: they overlap iff an end of one lies on the other.
+    if (on_arc(A, B.a, kSlack) || on_arc(A, B.b, kSlack) || on_arc(B, A.a, kSlack) || on_arc(B, A.b, kSlack)) return 0;
+  }
+  return std::min({point_arc_distance(A.a, B), point_arc_distance(A.b, B), point_arc_distance(B.a, A), point_arc_distance(B.b, A)});
 }
 
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+
+enum class PairKind { hinge, cone, general };
+
+struct PairInfo {
+  PairKind kind = PairKind::general;
+  bool done = false;       // proved disjoint for the rest of the path
+  double window = 0;       // proved disjoint on [1 - window, 1] (end window)
+  int cone_vertex = -1;    // shell vertex kept in common (cone pairs)
+  Vec2 cone_at = Vec2::Zero();
+  std::vector<int> up_p, up_q;  // pieces whose hinges lie between each piece and the common ancestor
+  std::vector<int> fixed;       // shell vertices the two pieces keep in common along the path
+  bool shares = false;          // the pieces share a shell vertex (they touch in the folded shell)
+};
+
+class Checker {
+ public:
+  Checker(const Net& net, const FoldCheckOptions& opt) : net_(net), opt_(opt), m_(net) {}
+
+  FoldCheckResult run();
+
+ private:
+  const Net& net_;
+  const FoldCheckOptions& opt_;
+  Motion m_;
+  std::vector<Piece> pc_;
+  double scale_ = 0, tol_ = 0;
+  std::unordered_map<std::uint64_t, PairInfo> pairs_;
+  std::vector<Rigid> T1_;             // pieces in the folded state (t = 1)
+  std::vector<Vec3> aa1_, au1_;       // and their hinge axes there
+
+  // State-dependent data (set by place()).
+  std::vector<Rigid> T_;
+  std::vector<Vec3> axis_w_a_, axis_w_u_;  // hinge axis of each piece in the current state
+  std::vector<Poly> poly_;
+  std::vector<Vec3> centre_;
+
+  void build_pieces();
+  void place(double t);
+  double lever(int piece, int joint) const {  // |angle| x distance of the piece's bounding sphere to the joint axis
+    Vec3 w = centre_[piece] - axis_w_a_[joint];
+    return std::abs(pc_[joint].angle) * ((w - w.dot(axis_w_u_[joint]) * axis_w_u_[joint]).norm() + pc_[piece].radius);
+  }
+  PairInfo& info(int p, int q);
+  void classify(int p, int q, PairInfo& pi);
+  double end_window(int p, int q, PairInfo& pi);
+  double plane_window(int p, int q, const PairInfo& pi);
+  bool cone_arc(int p, const Vec2& at, Arc* arc) const;
+  int face_near(int piece, const Vec3& world) const;
+  std::vector<Vec3> hull_world(int p, const Rigid& T) const {
+    std::vector<Vec3> out;
+    for (const auto& h : pc_[p].hull) out.push_back(T(lift(h)));
+    return out;
+  }
+};
+
+void Checker::build_pieces() {
+  const int nb = static_cast<int>(m_.body_root.size());
+  pc_.assign(nb, {});
+  double eps = 1e-12 * scale_;
+  for (int b = 0; b < nb; ++b) {
+    Piece& P = pc_[b];
+    P.faces = m_.body_faces[b];
+    int j = m_.body_root[b];
+    if (m_.parent[j] >= 0) {
+      P.parent = m_.body[m_.parent[j]];
+      P.depth = pc_[P.parent].depth + 1;  // body ids follow the breadth-first order
+      P.angle = m_.angle[j];
+      P.hinge_a = m_.axis_a[j];
+      P.hinge_u = m_.axis_u[j];
+    }
+    for (int f : P.faces)
+      for (int k = 0; k < 3; ++k) P.corners.emplace_back(net_.shell_faces[f][k], net_.corners[f][k]);
+    std::sort(P.corners.begin(), P.corners.end(), [](const auto& x, const auto& y) {
+      return x.first != y.first ? x.first < y.first : x.second.x() != y.second.x() ? x.second.x() < y.second.x() : x.second.y() < y.second.y();
+    });
+    P.corners.erase(std::unique(P.corners.begin(), P.corners.end(),
+                                [](const auto& x, const auto& y) { return x.first == y.first && x.second == y.second; }),
+                    P.corners.end());
+    std::vector<Vec2> pts;
+    for (auto& c : P.corners) pts.push_back(c.second);
+    for (int i : convex_hull_2d(pts, eps)) P.hull.push_back(pts[i]), P.hull_vertex.push_back(P.corners[i].first);
+    for (auto& h : P.hull) P.centre += h;
+    P.centre /= static_cast<double>(P.hull.size());
+    for (auto& c : P.corners) P.radius = std::max(P.radius, (c.second - P.centre).norm());
+  }
+}
+
+void Checker::place(double t) {
+  const int nb = static_cast<int>(pc_.size());
+  T_.assign(nb, Rigid());
+  axis_w_a_.assign(nb, Vec3::Zero());
+  axis_w_u_.assign(nb, Vec3::UnitX());
+  for (int b = 1; b < nb; ++b) {  // parents first (breadth-first ids)
+    const Piece& P = pc_[b];
+    const Rigid& A = T_[P.parent];
+    T_[b] = Motion::child_transform(A, P.hinge_a, P.hinge_u, t * P.angle);
+    axis_w_a_[b] = A(P.hinge_a);
+    axis_w_u_[b] = A.R * P.hinge_u;
+  }
+  poly_.resize(nb);
+  centre_.resize(nb);
+  for (int b = 0; b < nb; ++b) {
+    poly_[b].v = hull_world(b, T_[b]);
+    poly_[b].n = T_[b].R.col(2);
+    centre_[b] = T_[b](lift(pc_[b].centre));
+  }
+}
+
+PairInfo& Checker::info(int p, int q) {
+  std::uint64_t key = (static_cast<std::uint64_t>(p) << 32) | static_cast<std::uint32_t>(q);
+  auto [it, fresh] = pairs_.try_emplace(key);
+  if (fresh) classify(p, q, it->second);
+  return it->second;
+}
+
+// The hull's wedge at net point `at` as an arc of directions (in net coordinates, z = 0): the
+// two hull edges at that corner, or a half-plane when `at` lies on a hull edge.
+bool Checker::cone_arc(int p, const Vec2& at, Arc* arc) const {
+  const auto& H = pc_[p].hull;
+  const int m = static_cast<int>(H.size());
+  if (m < 3) return false;
+  double eps = 1e-10 * scale_;
+  for (int i = 0; i < m; ++i)
+    if ((H[i] - at).norm() <= eps) {
+      Vec2 e1 = (H[(i + 1) % m] - H[i]).normalized(), e2 = (H[(i + m - 1) % m] - H[i]).normalized();
+      arc->a = lift(e1), arc->b = lift(e2), arc->n = Vec3::UnitZ();
+      arc->alpha = std::atan2(cross2(e1, e2), e1.dot(e2));
+      return arc->alpha > 0;
+    }
+  for (int i = 0; i < m; ++i) {
+    Vec2 d = H[(i + 1) % m] - H[i];
+    double len = d.norm();
+    double s = (at - H[i]).dot(d) / (len * len);
+    if (s > 0 && s < 1 && std::abs(cross2(d, at - H[i])) / len <= eps) {
+      arc->a = lift(d / len), arc->b = -arc->a, arc->n = Vec3::UnitZ(), arc->alpha = M_PI;
+      return true;
+    }
+  }
+  return false;
+}
+
+// Hinge, cone or general: which shell vertices the two pieces keep in common (same net position,
+// on every hinge line between them, hence never moving apart) decides it.
+void Checker::classify(int p, int q, PairInfo& pi) {
+  for (int a = p, c = q; a != c;) {
+    if (pc_[a].depth >= pc_[c].depth) pi.up_p.push_back(a), a = pc_[a].parent;
+    else pi.up_q.push_back(c), c = pc_[c].parent;
+  }
+  const double eps = 1e-10 * scale_;
+  const auto &A = pc_[p].corners, &B = pc_[q].corners;
+  std::vector<Vec2> fixed_at;
+  for (std::size_t i = 0, j = 0; i < A.size() && j < B.size();) {
+    if (A[i].first < B[j].first) ++i;
+    else if (B[j].first < A[i].first) ++j;
+    else {
+      int v = A[i].first;
+      for (std::size_t i2 = i; i2 < A.size() && A[i2].first == v; ++i2)
+        for (std::size_t j2 = j; j2 < B.size() && B[j2].first == v; ++j2) {
+          const Vec2& x = A[i2].second;
+          if ((x - B[j2].second).norm() > eps) continue;
+          bool on_all = true;
+          for (const auto* side : {&pi.up_p, &pi.up_q})
+            for (int b : *side) {
+              Vec2 a2 = pc_[b].hinge_a.head<2>(), u2 = pc_[b].hinge_u.head<2>();
+              on_all = on_all && std::abs(cross2(u2, x - a2)) <= eps;
+            }
+          if (on_all && (pi.fixed.empty() || pi.fixed.back() != v)) pi.fixed.push_back(v), fixed_at.push_back(x);
+        }
+      while (i < A.size() && A[i].first == v) ++i;
+      while (j < B.size() && B[j].first == v) ++j;
+    }
+  }
+  if (fixed_at.size() >= 2) {
+    // Both pieces turn about the line through two common fixed corners (all hinges between them
+    // lie on it). Planar pieces on opposite closed sides of a common line meet only on it while
+    // their relative turn stays below pi; on the line nothing moves, so they meet there as in the
+    // flat net (where they only touch).
+    Vec2 o = fixed_at[0], d = (fixed_at[1] - fixed_at[0]).normalized();
+    double lo_p = kInf, hi_p = -kInf, lo_q = kInf, hi_q = -kInf;
+    for (auto& h : pc_[p].hull) lo_p = std::min(lo_p, cross2(d, h - o)), hi_p = std::max(hi_p, cross2(d, h - o));
+    for (auto& h : pc_[q].hull) lo_q = std::min(lo_q, cross2(d, h - o)), hi_q = std::max(hi_q, cross2(d, h - o));
+    bool opposite = (hi_p <= eps && lo_q >= -eps) || (hi_q <= eps && lo_p >= -eps);
+    double turn = 0;
+    for (int b : pi.up_p) turn -= pc_[b].angle * (pc_[b].hinge_u.head<2>().dot(d) > 0 ? 1 : -1);
+    for (int b : pi.up_q) turn += pc_[b].angle * (pc_[b].hinge_u.head<2>().dot(d) > 0 ? 1 : -1);
+    if (opposite && std::abs(turn) < M_PI - 1e-9) {
+      pi.kind = PairKind::hinge;
+      pi.done = true;
+      return;
+    }
+  }
+  if (fixed_at.size() == 1) {
+    Arc arc;
+    if (cone_arc(p, fixed_at[0], &arc) && cone_arc(q, fixed_at[0], &arc)) {
+      pi.kind = PairKind::cone;
+      pi.cone_vertex = pi.fixed[0];
+      pi.cone_at = fixed_at[0];
+    }
+  }
+  pi.window = end_window(p, q, pi);
+}
+
+// End window for a pair that touches in the folded shell: the largest s such that the pair is
+// proved disjoint (but for fixed common corners) on [1 - s, 1]; 0 when none.
+double Checker::end_window(int p, int q, PairInfo& pi) {
+  // Only pairs that share a shell vertex can touch at t = 1 on a convex shell; others are
+  // advanced to t = 1 by distance, which stays positive there.
+  bool share = !pi.fixed.empty();
+  {
+    const auto &A = pc_[p].corners, &B = pc_[q].corners;
+    for (std::size_t i = 0, j = 0; i < A.size() && j < B.size() && !share;) {
+      if (A[i].first < B[j].first) ++i;
+      else if (B[j].first < A[i].first) ++j;
+      else share = true;
+    }
+  }
+  pi.shares = share;
+  if (!share) return 0;
+  return std::max(plane_window(p, q, pi), plane_window(q, p, pi));
+}
+
+// Window near t = 1 in which a plane fixed to piece p keeps p on one side and piece q strictly on
+// the other, but for the fixed common corners; then p and q meet at most there. Candidate planes
+// pass through a corner c of p shared with q: normal n = cos(phi) (-n_p) + sin(phi) m, with m an
+// outward normal of p's hull at c (edge normals and their bisector), phi on a grid in [0, pi):
+// phi = 0 is p's own plane; tilting about p's edge lets one plane separate a pair whose common
+// edge closes with a twist. h(x) = n . (x - c) for q's corners x, in p's frame. A corner with
+// h > 0 at t = 1 stays on q's side while its travel relative to p is below h. A corner on the
+// plane at t = 1 needs h'(1) < 0 (it arrives from q's side); then h(1 - s) >= s |h'(1)| - s^2 M / 2
+// with M >= |h''| = |relative acceleration| <= 2 S L (S = sum of |angles| between the pieces,
+// L = sum of |angle| x lever), so s <= |h'(1)| / M is safe.
+double Checker::plane_window(int p, int q, const PairInfo& pi) {
+  const auto& T1 = T1_;
+  const auto &aa = aa1_, &au = au1_;
+  const bool swapped = p > q;
+  const std::vector<int>& up_p = swapped ? pi.up_q : pi.up_p;
+  const std::vector<int>& up_q = swapped ? pi.up_p : pi.up_q;
+  double S = 0;
+  for (int b : up_p) S += std::abs(pc_[b].angle);
+  for (int b : up_q) S += std::abs(pc_[b].angle);
+  const Piece &P = pc_[p], &Q = pc_[q];
+  const int mp = static_cast<int>(P.hull.size()), mq = static_cast<int>(Q.hull.size());
+  std::vector<Vec3> xp(mp), xq(mq), vel(mq);
+  std::vector<double> L(mq, 0.0);
+  std::vector<char> fixed(mq, 0);
+  for (int i = 0; i < mp; ++i) xp[i] = T1[p](lift(P.hull[i]));
+  for (int i = 0; i < mq; ++i) {
+    const Vec3 x = xq[i] = T1[q](lift(Q.hull[i]));
+    fixed[i] = std::find(pi.fixed.begin(), pi.fixed.end(), Q.hull_vertex[i]) != pi.fixed.end();
+    // Velocity of x relative to p (world frame at t = 1): joints towards q count +, towards p -.
+    vel[i].setZero();
+    for (const auto* side : {&up_q, &up_p})
+      for (int b : *side) {
+        Vec3 w = x - aa[b];
+        vel[i] += (side == &up_q ? 1 : -1) * pc_[b].angle * au[b].cross(w);
+        L[i] += std::abs(pc_[b].angle) * (w - w.dot(au[b]) * au[b]).norm();
+      }
+  }
+  auto window_for = [&](const Vec3& n, const Vec3& c) {
+    for (int i = 0; i < mp; ++i)
+      if (n.dot(xp[i] - c) > tol_) return 0.0;
+    double window = 1;
+    for (int i = 0; i < mq; ++i) {
+      if (fixed[i]) continue;
+      double h = n.dot(xq[i] - c);
+      if (h > tol_) {
+        // Travel over s is at most s L / (1 - s S) (levers grow with the travel).
+        window = std::min(window, (h - tol_) / (L[i] + (h - tol_) * S));
+        continue;
+      }
+      if (h < -tol_) return 0.0;
+      double rate = -n.dot(vel[i]);  // = -h'(1): how fast h grows as t goes back from 1
+      if (!(rate > 1e-9 * (L[i] + scale_))) return 0.0;
+      // Levers over the window grow to at most L / (1 - s S); s <= 1 / (2 S) keeps that below 2 L.
+      double M = 2 * S * 2 * L[i];
+      double s = M > 0 ? rate / M : 1;
+      if (S > 0) s = std::min(s, 0.5 / S);
+      window = std::min(window, s);
+    }
+    return window;
+  };
+  const Vec3 inward = -T1[p].R.col(2);
+  double best = 0;
+  for (int i = 0; i < mp; ++i) {
+    int v = P.hull_vertex[i];
+    bool shared = false;
+    for (int j = 0; j < mq && !shared; ++j) shared = Q.hull_vertex[j] == v;
+    if (!shared) continue;
+    // Outward normals (in p's plane) of the hull edges at corner i, and their bisector.
+    Vec3 e_next = xp[(i + 1) % mp] - xp[i], e_prev = xp[i] - xp[(i + mp - 1) % mp];
+    Vec3 m1 = e_next.cross(-inward).normalized(), m0 = e_prev.cross(-inward).normalized();
+    for (const Vec3& m : {m0, m1, Vec3((m0 + m1).normalized())})
+      for (int k = 0; k < 16; ++k) {
+        double phi = k * M_PI / 16;
+        best = std::max(best, window_for(std::cos(phi) * inward + std::sin(phi) * m, xp[i]));
+      }
+  }
+  return best;
+}
+
+// The face of a piece nearest to a point (for reporting).
+int Checker::face_near(int piece, const Vec3& world) const {
+  Vec3 local = T_[piece].R.transpose() * (world - T_[piece].tr);
+  Vec2 x = local.head<2>();
+  int best = pc_[piece].faces.front();
+  double bd = kInf;
+  for (int f : pc_[piece].faces) {
+    Vec2 c = (net_.corners[f][0] + net_.corners[f][1] + net_.corners[f][2]) / 3;
+    double d = (c - x).norm();
+    if (d < bd) bd = d, best = f;
+  }
+  return best;
+}
+
+FoldCheckResult Checker::run() {
+  FoldCheckResult res;
+  const int nb = static_cast<int>(m_.body_root.size());
+  res.pieces = nb;
+  {
+    Vec2 lo(1e300, 1e300), hi(-1e300, -1e300);
+    for (auto& c : net_.corners)
+      for (auto& p : c) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+    scale_ = (hi - lo).norm();
+  }
+  tol_ = opt_.tolerance * scale_;
+  build_pieces();
+  T1_.assign(nb, Rigid());
+  aa1_.assign(nb, Vec3::Zero());
+  au1_.assign(nb, Vec3::UnitX());
+  for (int b = 1; b < nb; ++b) {
+    const Piece& P = pc_[b];
+    T1_[b] = Motion::child_transform(T1_[P.parent], P.hinge_a, P.hinge_u, P.angle);
+    aa1_[b] = T1_[P.parent](P.hinge_a);
+    au1_[b] = T1_[P.parent].R * P.hinge_u;
+  }
+  if (nb <= 1) {  // one rigid piece: nothing moves
+    res.verified = true;
+    return res;
+  }
+  // Per step, no point moves farther than this (absolute): keeps the candidate boxes local.
+  const double max_travel = 0.05 * scale_;
+  auto travel = [](double h, double L, double S) { return h * L / (1 - h * S); };
+  auto fail = [&](double t, int p, int q, const Vec3& at_p, const Vec3& at_q, const std::string& why) {
+    res.t = t;
+    res.face_a = face_near(p, at_p), res.face_b = face_near(q, at_q);
+    if (res.face_a > res.face_b) std::swap(res.face_a, res.face_b);
+    std::ostringstream os;
+    os << "faces " << res.face_a << " and " << res.face_b << " " << why << " at t = " << t;
+    res.message = os.str();
+    res.pairs = static_cast<int>(pairs_.size());
+  };
+
+  double t = 0, dt = 1.0 / 16;
+  std::vector<double> abs_lever(nb), abs_theta(nb);
+  std::vector<std::pair<int, int>> cand;
+  for (res.steps = 0; res.steps < opt_.max_steps; ++res.steps) {
+    place(t);
+    double max_lever = 0, max_theta = 0;
+    for (int b = 0; b < nb; ++b) {
+      abs_lever[b] = abs_theta[b] = 0;
+      for (int a = b; pc_[a].parent >= 0; a = pc_[a].parent) abs_lever[b] += lever(b, a), abs_theta[b] += std::abs(pc_[a].angle);
+      max_lever = std::max(max_lever, abs_lever[b]);
+      max_theta = std::max(max_theta, abs_theta[b]);
+    }
+    dt = std::min({2 * dt, 1 - t, 0.5 / std::max(max_theta, 1e-300)});
+    if (travel(dt, max_lever, max_theta) > max_travel) dt = max_travel / (max_lever + max_travel * max_theta);
+    // Candidate pairs: pieces whose boxes, inflated by how far they can travel in dt, meet.
+    std::vector<Box> boxes;
+    boxes.reserve(nb);
+    for (int b = 0; b < nb; ++b) {
+      double r = travel(dt, abs_lever[b], abs_theta[b]) + tol_;
+      double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+      for (auto& v : poly_[b].v)
+        for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], v[d] - r), hi[d] = std::max(hi[d], v[d] + r);
+      boxes.emplace_back(lo, hi, b);
+    }
+    cand.clear();
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
+      cand.emplace_back(std::min(a.info(), b.info()), std::max(a.info(), b.info()));
+    });
+    std::sort(cand.begin(), cand.end());  // deterministic whatever order the boxes come in
+    double step = dt;
+    for (auto [p, q] : cand) {
+      PairInfo& pi = info(p, q);
+      if (pi.done) continue;
+      if (t >= 1 - pi.window) {
+        pi.done = true;
+        continue;
+      }
+      double h;  // how long from t this pair is proved apart
+      if (pi.kind == PairKind::cone) {
+        Arc A, B;
+        cone_arc(p, pi.cone_at, &A), cone_arc(q, pi.cone_at, &B);
+        for (Arc* arc : {&A, &B}) {
+          const Rigid& T = arc == &A ? T_[p] : T_[q];
+          arc->a = T.R * arc->a, arc->b = T.R * arc->b, arc->n = T.R * arc->n;
+        }
+        double d = arc_distance(A, B) - 1e-10;
+        double S = 0;
+        for (int b : pi.up_p) S += std::abs(pc_[b].angle);
+        for (int b : pi.up_q) S += std::abs(pc_[b].angle);
+        if (d <= 0) {
+          Vec3 at = T_[p](lift(pi.cone_at));
+          fail(t, p, q, at, at, t == 0 ? "touch beside their common corner in the flat net" : "cross at their common corner");
+          return res;
+        }
+        h = d / S;  // directions turn at most S rad per unit t relative to each other
+      } else {
+        double d = polygon_distance(poly_[p], poly_[q]) - tol_;
+        if (d <= 0) {
+          fail(t, p, q, centre_[p], centre_[q], t == 0 ? "touch in the flat net" : (t >= 1 ? "touch in the folded shell" : "collide"));
+          if (t >= 1) res.message += " (no separating plane proves the approach)";
+          return res;
+        }
+        double L = 0, Sp = 0, Sq = 0;
+        for (int b : pi.up_p) L += lever(p, b), Sp += std::abs(pc_[b].angle);
+        for (int b : pi.up_q) L += lever(q, b), Sq += std::abs(pc_[b].angle);
+        double S = std::max(Sp, Sq);
+        h = d / (L + d * S);  // travel(h, L, S) = d
+      }
+      if (t + h >= 1 - pi.window) {
+        pi.done = true;
+        continue;
+      }
+      if (h < opt_.min_step) {
+        // The pair is (numerically) in contact, or approaches a contact of the folded shell that
+        // no separating plane proves free.
+        std::ostringstream why;
+        why << "come into contact (step " << h << " below " << opt_.min_step << ")";
+        if (pi.shares && t > 0.5) why << "; they touch in the folded shell and no separating plane proves the approach free";
+        fail(t, p, q, centre_[p], centre_[q], why.str());
+        return res;
+      }
+      step = std::min(step, h);
+    }
+    dt = step;
+    t += dt;
+    if (t >= 1) {
+      res.verified = true;
+      res.t = 1;
+      ++res.steps;
+      res.pairs = static_cast<int>(pairs_.size());
+      return res;
+    }
+  }
+  res.t = t;
+  res.message = "step limit reached at t = " + std::to_string(t);
+  res.pairs = static_cast<int>(pairs_.size());
+  return res;
+}
 
 }  // namespace
 
 std::vector<std::array<Eigen::Vector3d, 3>> folded_faces(const Net& net, double t) {
   Motion m(net);
   auto T = m.transforms(t);
-  std::vector<Tri3> out(m.nf);
+  std::vector<std::array<Eigen::Vector3d, 3>> out(m.nf);
   for (int f = 0; f < m.nf; ++f)
     for (int k = 0; k < 3; ++k) out[f][k] = T[f](lift(net.corners[f][k]));
   return out;
 }
 
 FoldCheckResult check_folding(const Net& net, const FoldCheckOptions& options) {
-  FoldCheckResult res;
-  Motion m(net);
-  const int nf = m.nf, nb = static_cast<int>(m.body_root.size());
-  if (nb <= 1) {  // one rigid piece: nothing moves
-    res.verified = true;
-    return res;
-  }
-  // Pieces form a tree: parent piece, depth, the joint (body root face) that moves each piece.
-  std::vector<int> body_parent(nb, -1), body_depth(nb, 0);
-  for (int b = 0; b < nb; ++b) {
-    int j = m.body_root[b];
-    if (m.parent[j] >= 0) body_parent[b] = m.body[m.parent[j]];
-  }
-  for (int f : m.order) {
-    int b = m.body[f];
-    if (m.body_root[b] == f && body_parent[b] >= 0) body_depth[b] = body_depth[body_parent[b]] + 1;
-  }
-  double scale = 0;
-  {
-    Eigen::Vector2d lo(1e300, 1e300), hi(-1e300, -1e300);
-    for (auto& c : net.corners)
-      for (auto& p : c) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-    scale = (hi - lo).norm();
-  }
-  // Per step, no point moves farther than this (absolute): keeps the candidate boxes local.
-  const double max_travel = 0.05 * scale;
-
-  double t = 0, dt = 1.0 / 64;
-  std::vector<Tri3> tri(nf);
-  std::vector<Eigen::Vector3d> centre(nf), axis_a(nb), axis_u(nb);
-  std::vector<double> rad(nf), lever_abs(nb), theta_abs(nb);
-  for (res.steps = 0; res.steps < options.max_steps; ++res.steps) {
-    auto T = m.transforms(t);
-    for (int f = 0; f < nf; ++f) {
-      for (int k = 0; k < 3; ++k) tri[f][k] = T[f](lift(net.corners[f][k]));
-      centre[f] = (tri[f][0] + tri[f][1] + tri[f][2]) / 3;
-      rad[f] = std::max({(tri[f][0] - centre[f]).norm(), (tri[f][1] - centre[f]).norm(), (tri[f][2] - centre[f]).norm()});
-    }
-    for (int b = 0; b < nb; ++b) {
-      int j = m.body_root[b];
-      if (m.parent[j] < 0) continue;
-      const auto& P = T[m.parent[j]];
-      axis_a[b] = P(m.axis_a[j]);
-      axis_u[b] = P.R * m.axis_u[j];
-    }
-    // Lever of face f about the joint of piece b: distance of its bounding sphere to the axis.
-    auto lever = [&](int f, int b) {
-      Eigen::Vector3d w = centre[f] - axis_a[b];
-      return std::abs(m.angle[m.body_root[b]]) * ((w - w.dot(axis_u[b]) * axis_u[b]).norm() + rad[f]);
-    };
-    // Absolute bound per face (all joints above it), for the candidate boxes.
-    double max_lever = 0, max_theta = 0;
-    std::vector<double> face_lever(nf, 0), face_theta(nf, 0);
-    for (int f = 0; f < nf; ++f) {
-      for (int b = m.body[f]; body_parent[b] >= 0; b = body_parent[b]) {
-        face_lever[f] += lever(f, b);
-        face_theta[f] += std::abs(m.angle[m.body_root[b]]);
-      }
-      max_lever = std::max(max_lever, face_lever[f]);
-      max_theta = std::max(max_theta, face_theta[f]);
-    }
-    // Travel over [t, t + h] with lever L and angle sum S: the lever grows with the travel
-    // itself, so h*L/(1 - h*S) (valid for h*S < 1).
-    auto travel = [](double h, double L, double S) { return h * L / (1 - h * S); };
-    dt = std::min({2 * dt, 1 - t, 0.5 / std::max(max_theta, 1e-300)});
-    if (travel(dt, max_lever, max_theta) > max_travel) dt = max_travel / (max_lever + max_travel * max_theta);
-    // Candidate pairs in two stages: pieces whose (inflated) boxes meet, then their faces. Faces
-    // of one rigid piece never move relative to each other and are never paired.
-    std::vector<std::vector<Box>> piece_boxes(nb);
-    std::vector<Box> piece_box;
-    {
-      std::vector<std::array<double, 6>> ext(nb, {1e300, 1e300, 1e300, -1e300, -1e300, -1e300});
-      for (int f = 0; f < nf; ++f) {
-        double r = travel(dt, face_lever[f], face_theta[f]);
-        double lo[3], hi[3];
-        for (int d = 0; d < 3; ++d) {
-          lo[d] = std::min({tri[f][0][d], tri[f][1][d], tri[f][2][d]}) - r;
-          hi[d] = std::max({tri[f][0][d], tri[f][1][d], tri[f][2][d]}) + r;
-        }
-        auto& e = ext[m.body[f]];
-        for (int d = 0; d < 3; ++d) e[d] = std::min(e[d], lo[d]), e[3 + d] = std::max(e[3 + d], hi[d]);
-        piece_boxes[m.body[f]].emplace_back(lo, hi, f);
-      }
-      for (int b = 0; b < nb; ++b) {
-        double lo[3] = {ext[b][0], ext[b][1], ext[b][2]}, hi[3] = {ext[b][3], ext[b][4], ext[b][5]};
-        piece_box.emplace_back(lo, hi, b);
-      }
-    }
-    bool hit = false;
-    double hit_distance = 0;
-    auto check_pair = [&](int f0, int g0) {
-      if (hit) return;
-      int f = std::min(f0, g0), g = std::max(f0, g0);
-      int bf = m.body[f], bg = m.body[g];
-      const auto &vf = net.shell_faces[f], &vg = net.shell_faces[g];
-      if (share_vertex(vf, vg)) {
-        if (touching_pair_collides(tri[f], tri[g], vf, vg)) hit = true, res.face_a = f, res.face_b = g;
-        return;
-      }
-      // Relative motion: only the joints between the two pieces and their common ancestor count.
-      double L = 0, S_f = 0, S_g = 0;
-      for (int a = bf, c = bg; a != c;) {
-        if (body_depth[a] >= body_depth[c]) {
-          L += lever(f, a), S_f += std::abs(m.angle[m.body_root[a]]), a = body_parent[a];
-        } else {
-          L += lever(g, c), S_g += std::abs(m.angle[m.body_root[c]]), c = body_parent[c];
-        }
-      }
-      double S = std::max(S_f, S_g);
-      double lower = (centre[f] - centre[g]).norm() - rad[f] - rad[g];
-      if (travel(dt, L, S) < lower) return;
-      double d = triangle_distance(tri[f], tri[g]);
-      if (d <= 0) {
-        hit = true, res.face_a = f, res.face_b = g;
-        return;
-      }
-      if (travel(dt, L, S) < d) return;
-      double h = 0.9 * d / (L + d * S);
-      if (h < dt) {
-        dt = h;
-        res.face_a = f, res.face_b = g, hit_distance = d;
-      }
-    };
-    std::vector<std::pair<int, int>> piece_pairs;
-    CGAL::box_self_intersection_d(piece_box.begin(), piece_box.end(),
-                                  [&](const Box& a, const Box& b) { piece_pairs.emplace_back(a.info(), b.info()); });
-    std::sort(piece_pairs.begin(), piece_pairs.end());
-    auto overlap = [](const Box& a, const Box& b) {
-      for (int d = 0; d < 3; ++d)
-        if (a.max_coord(d) < b.min_coord(d) || b.max_coord(d) < a.min_coord(d)) return false;
-      return true;
-    };
-    for (auto [pa, pb] : piece_pairs) {
-      if (hit) break;
-      auto &A = piece_boxes[pa], &B = piece_boxes[pb];
-      if (A.size() * B.size() <= 256) {
-        for (auto& a : A)
-          for (auto& b : B)
-            if (overlap(a, b)) check_pair(a.info(), b.info());
-      } else {
-        std::vector<Box> a(A), b(B);
-        CGAL::box_intersection_d(a.begin(), a.end(), b.begin(), b.end(),
-                                 [&](const Box& x, const Box& y) { check_pair(x.info(), y.info()); });
-      }
-    }
-    if (hit) {
-      res.t = t;
-      std::ostringstream os;
-      os << "faces " << res.face_a << " and " << res.face_b << " collide at t = " << t;
-      res.message = os.str();
-      return res;
-    }
-    if (dt < options.min_step) {
-      res.t = t;
-      std::ostringstream os;
-      os << "faces " << res.face_a << " and " << res.face_b << " come within " << hit_distance << " at t = " << t
-         << " (step below " << options.min_step << ")";
-      res.message = os.str();
-      return res;
-    }
-    res.face_a = res.face_b = -1;
-    t += dt;
-    if (t >= 1) {
-      res.verified = true;
-      res.t = 1;
-      ++res.steps;
-      return res;
-    }
-  }
-  res.t = t;
-  res.message = "step limit reached at t = " + std::to_string(t);
-  return res;
+  Checker c(net, options);
+  return c.run();
 }
 
 }  // namespace dcshell

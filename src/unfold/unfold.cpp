@@ -71,18 +71,6 @@ struct UnionFind {
 
 using Vec2 = Eigen::Vector2d;
 
-// Third corner of a triangle whose first two corners (3D: A3, B3) are placed at A2, B2: to the
-// left of A2->B2, so the face keeps its counter-clockwise orientation (never mirrored).
-Vec2 place_third(const Vec2& A2, const Vec2& B2, const Eigen::Vector3d& A3, const Eigen::Vector3d& B3,
-                 const Eigen::Vector3d& C3) {
-  Eigen::Vector3d e = B3 - A3, w = C3 - A3;
-  double s = w.dot(e) / e.squaredNorm();
-  double h = w.cross(e).norm() / e.norm();
-  Vec2 d = B2 - A2;
-  Vec2 left(-d.y(), d.x());
-  return A2 + s * d + (h / d.norm()) * left;
-}
-
 double hull_area(const std::vector<Epick::Point_2>& pts) {
   std::vector<Epick::Point_2> hull;
   CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
@@ -142,7 +130,7 @@ std::uint64_t tree_hash(const std::vector<char>& folded) {
   return h;
 }
 
-Decoded decode(const ShellGraph& g, const std::vector<char>& folded, bool first_overlap_only) {
+Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t max_overlaps) {
   const int nf = static_cast<int>(g.F.size());
   const int ne = static_cast<int>(g.edges.size());
   Decoded d;
@@ -167,18 +155,27 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, bool first_
       adj[g.edges[i].f0].push_back({g.edges[i].f1, i});
       adj[g.edges[i].f1].push_back({g.edges[i].f0, i});
     }
+  // Each facet is placed as one rigid copy of its chart; the transform of a facet is fixed by
+  // the tree edge through which the breadth-first search enters it (rotation only: charts are
+  // all counter-clockwise, so nothing is mirrored).
   std::vector<std::array<Vec2, 3>> P(nf);
+  std::vector<Eigen::Matrix2d> R(g.num_facets);
+  std::vector<Vec2> T(g.num_facets);
+  std::vector<char> placed_facet(g.num_facets, 0);
+  auto place_face = [&](int f) {
+    int k = g.facet[f];
+    for (int j = 0; j < 3; ++j) P[f][j] = R[k] * g.chart[f][j] + T[k];
+  };
   std::vector<int> rank(nf, -1);
   net.parent.assign(nf, -1);
   std::vector<int> order;
   order.reserve(nf);
-  {
-    const auto& t = g.F[0];
-    Vec2 a(0, 0), b((g.V[t[1]] - g.V[t[0]]).norm(), 0);
-    P[0] = {a, b, place_third(a, b, g.V[t[0]], g.V[t[1]], g.V[t[2]])};
-    rank[0] = 0;
-    order.push_back(0);
-  }
+  R[g.facet[0]].setIdentity();
+  T[g.facet[0]].setZero();
+  placed_facet[g.facet[0]] = 1;
+  place_face(0);
+  rank[0] = 0;
+  order.push_back(0);
   for (std::size_t qi = 0; qi < order.size(); ++qi) {
     int p = order[qi];
     for (auto [f, ei] : adj[p]) {
@@ -186,18 +183,26 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, bool first_
       rank[f] = static_cast<int>(order.size());
       order.push_back(f);
       net.parent[f] = p;
-      int k = 0;
-      while (g.face_edge[f][k] != ei) ++k;
-      const auto& t = g.F[f];
-      int a = t[k], b = t[(k + 1) % 3], c = t[(k + 2) % 3];
-      auto pos_in_parent = [&](int v) {
-        for (int j = 0; j < 3; ++j)
-          if (g.F[p][j] == v) return P[p][j];
-        return Vec2(0, 0);
-      };
-      P[f][k] = pos_in_parent(a);
-      P[f][(k + 1) % 3] = pos_in_parent(b);
-      P[f][(k + 2) % 3] = place_third(P[f][k], P[f][(k + 1) % 3], g.V[a], g.V[b], g.V[c]);
+      int k = g.facet[f];
+      if (!placed_facet[k]) {
+        // Map the shared edge's ends, as the chart of f has them, onto their places in p.
+        int j = 0;
+        while (g.face_edge[f][j] != ei) ++j;
+        int a = g.F[f][j], b = g.F[f][(j + 1) % 3];
+        auto pos_in_parent = [&](int v) {
+          for (int i = 0; i < 3; ++i)
+            if (g.F[p][i] == v) return P[p][i];
+          return Vec2(0, 0);
+        };
+        Vec2 pa = pos_in_parent(a), dp = pos_in_parent(b) - pa;
+        Vec2 qa = g.chart[f][j], dq = g.chart[f][(j + 1) % 3] - qa;
+        double c = dq.dot(dp), s = dq.x() * dp.y() - dq.y() * dp.x(), n = std::hypot(c, s);
+        c /= n, s /= n;
+        R[k] << c, -s, s, c;
+        T[k] = pa - R[k] * qa;
+        placed_facet[k] = 1;
+      }
+      place_face(f);
     }
   }
 
@@ -214,7 +219,10 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, bool first_
     if (in_tree[i]) continue;
     int gi = g.edge_group[i];
     if (gi >= 0 && !folded[gi]) continue;
-    double tol = 1e-7 * g.edge_length[i];
+    // The other segments of a folded polytope edge meet only as well as the file's rounding
+    // keeps its subdivision points on the edge line (pyramid2, 6 decimals: 1e-6 apart); merging
+    // them moves a corner by at most 1e-5 of the model size, invisible on paper.
+    double tol = gi >= 0 ? std::max(1e-7 * g.edge_length[i], 1e-5 * g.scale) : 1e-7 * g.edge_length[i];
     e.fold = (P[e.f0][corner(e.f0, e.v0)] - P[e.f1][corner(e.f1, e.v0)]).norm() <= tol &&
              (P[e.f0][corner(e.f0, e.v1)] - P[e.f1][corner(e.f1, e.v1)]).norm() <= tol;
   }
@@ -243,8 +251,7 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, bool first_
   for (int i = 0; i < ne; ++i)
     if (!net.edges[i].fold) d.metrics.cut_length += g.edge_length[i];
   d.metrics.hull_area = hull_area(net_points(net));
-  d.metrics.overlapping_pairs = static_cast<int>(
-      find_net_overlaps(net, first_overlap_only ? 1 : std::numeric_limits<std::size_t>::max()).size());
+  if (max_overlaps > 0) d.metrics.overlapping_pairs = static_cast<int>(find_net_overlaps(net, max_overlaps).size());
   return d;
 }
 
@@ -356,10 +363,14 @@ double objective_score(const NetMetrics& m, const NetMetrics& ref, UnfoldObjecti
 
 namespace {
 
-Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std::uint64_t seed) {
+Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std::uint64_t seed,
+                        const std::vector<Eigen::Vector3d>& preferred) {
   Rng rng(mix_seed(seed, static_cast<std::uint64_t>(h), static_cast<std::uint64_t>(attempt)));
-  // The first direction is a fixed generic one, so the first net does not depend on the seed.
-  Eigen::Vector3d c = attempt == 0 ? Eigen::Vector3d(0.2137, 0.5318, 0.8193).normalized() : rng.direction();
+  // The first direction is a fixed generic one, so the first net does not depend on the seed;
+  // then the shell's preferred directions, then random ones.
+  Eigen::Vector3d c = attempt == 0 ? Eigen::Vector3d(0.2137, 0.5318, 0.8193).normalized()
+                      : attempt <= static_cast<int>(preferred.size()) ? preferred[attempt - 1]
+                                                                      : rng.direction();
   switch (h) {
     case UnfoldHeuristic::steepest: return steepest_edge_weights(g, c);
     case UnfoldHeuristic::flat: return flat_tree_weights(g, c);
@@ -369,20 +380,26 @@ Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std
   }
 }
 
-int automatic_tries(int faces) { return std::clamp(150000 / std::max(faces, 1), 2, 64); }
+// Default effort: a cut tree costs about 8 + faces units (a fixed part, then linear), and the
+// default spends about 100 units per heuristic: a few trees for a small shell, one per heuristic
+// from 100 faces on (the retries continue until a net is overlap-free). That keeps the default
+// at about a millisecond per shell of a composite model; --tries or the GA search further.
+int automatic_tries(int faces) { return std::clamp(100 / (8 + std::max(faces, 1)), 1, 64); }
 
 }  // namespace
 
-SearchResult search_heuristics(const ShellGraph& g, const UnfoldOptions& options) {
+SearchResult search_heuristics(const ShellGraph& g, const SearchGraph& sg, const UnfoldOptions& options, bool extended) {
   std::vector<UnfoldHeuristic> hs;
   bool all = options.heuristic == UnfoldHeuristic::best || options.heuristic == UnfoldHeuristic::ga;
   if (all)
     hs = {UnfoldHeuristic::steepest, UnfoldHeuristic::min_perimeter, UnfoldHeuristic::flat, UnfoldHeuristic::random};
   else
     hs = {options.heuristic};
-  const int tries = options.tries > 0 ? options.tries : automatic_tries(static_cast<int>(g.F.size()));
-  // A single heuristic keeps retrying (up to 8x) until it finds an overlap-free net.
-  const int max_tries = all ? tries : 8 * tries;
+  const int tries = options.tries > 0 ? options.tries : automatic_tries(sg.faces());
+  const auto preferred = preferred_directions(g);
+  // Extended: retries go on (up to 8x, at least through the preferred directions) until a net
+  // is overlap-free.
+  const int max_tries = extended ? std::max(8 * tries, std::clamp(20000 / (8 + sg.faces()), 16, 64)) : tries;
 
   SearchResult r;
   std::unordered_set<std::uint64_t> seen;
@@ -390,12 +407,12 @@ SearchResult search_heuristics(const ShellGraph& g, const UnfoldOptions& options
   for (int attempt = 0; attempt < max_tries; ++attempt) {
     if (attempt >= tries && r.best >= 0 && r.evaluated[r.best].metrics.overlapping_pairs == 0) break;
     for (auto h : hs) {
-      Genome w = heuristic_genome(g, h, attempt, options.seed);
+      Genome w = heuristic_genome(g, h, attempt, options.seed, preferred);
       auto folded = folded_groups(g, w);
       if (!seen.insert(tree_hash(folded)).second) continue;
-      Decoded d = decode(g, folded, true);
-      r.evaluated.push_back({std::move(w), d.metrics, to_string(h)});
-      double s = objective_score(d.metrics, r.evaluated.front().metrics, options.objective);
+      NetMetrics m = sg.evaluate(folded);
+      r.evaluated.push_back({std::move(w), m, to_string(h)});
+      double s = objective_score(m, r.evaluated.front().metrics, options.objective);
       if (s < best_score) best_score = s, r.best = static_cast<int>(r.evaluated.size()) - 1;
     }
   }
@@ -403,16 +420,19 @@ SearchResult search_heuristics(const ShellGraph& g, const UnfoldOptions& options
 }
 
 Net finish_net(const ShellGraph& g, const Genome& genome, NetMetrics* metrics) {
-  Decoded d = decode(g, folded_groups(g, genome), false);
+  Decoded d = decode(g, folded_groups(g, genome), 0);
   Net placed = d.net;
   normalise_placement(d.net);
   NetMetrics m = d.metrics;
   m.overlapping_pairs = static_cast<int>(find_net_overlaps(d.net).size());
   // Rotation rounds coordinates; keep the unrotated net in the (unseen so far) case where that
   // rounding alone creates an overlap.
-  if (m.overlapping_pairs > d.metrics.overlapping_pairs) {
-    d.net = std::move(placed);
-    m = d.metrics;
+  if (m.overlapping_pairs > 0) {
+    int unrotated = static_cast<int>(find_net_overlaps(placed).size());
+    if (unrotated < m.overlapping_pairs) {
+      d.net = std::move(placed);
+      m.overlapping_pairs = unrotated;
+    }
   }
   if (metrics) *metrics = m;
   return std::move(d.net);
@@ -435,7 +455,34 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
   st.reflex_edges = g.reflex_edges;
   st.max_reflex_angle = g.max_reflex_angle;
 
-  SearchResult search = search_heuristics(g, options);
+  // A shell bent slightly everywhere (cone2: hundreds of folds of 1e-4 to 1e-3 rad) may have no
+  // overlap-free net while those folds count as edges: cutting one leaves a sliver overlap. Then
+  // folds up to 10x, 100x the flat angle (at most 0.01 rad) are merged into facets as well; a
+  // facet is laid out as one chart, so net lengths then differ from the shell's by about the
+  // square of the largest angle merged (reported as stats.flat_angle).
+  // First the normal budget at each flat angle in turn, then the extended retries at each.
+  std::vector<double> flats = {options.flat_angle};
+  while (flats.back() > 0 && flats.back() * 10 <= 0.01 * (1 + 1e-9)) flats.push_back(flats.back() * 10);
+  auto any_free = [](const SearchResult& r) {
+    for (const auto& c : r.evaluated)
+      if (c.metrics.overlapping_pairs == 0) return true;
+    return false;
+  };
+  double flat = options.flat_angle;
+  SearchGraph sg = make_search_graph(g, flat);
+  SearchResult search = search_heuristics(g, sg, options, false);
+  for (std::size_t round = 0, i = 1; !any_free(search) && round < 2; ++i) {
+    if (i == flats.size()) i = 0, ++round;
+    if (round == 2) break;
+    if (flats[i] != flat) {
+      flat = flats[i];
+      g = build_shell_graph(mesh, flat);
+      sg = make_search_graph(g, flat);
+    }
+    search = search_heuristics(g, sg, options, round == 1);
+  }
+  st.facets = g.num_facets;
+  st.flat_angle = flat;
   st.attempts = static_cast<int>(search.evaluated.size());
   const NetMetrics& ref = search.evaluated.front().metrics;
   // Candidates in score order: the GA's best (when run), then the heuristics' nets.
@@ -443,8 +490,8 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
   if (ga) {
     int pop = std::max(4, ga->population);
     int evals = ga->evaluations > 0 ? ga->evaluations
-                                    : std::clamp(static_cast<int>(2000000 / std::max<std::size_t>(g.F.size(), 1)), 100, 2000);
-    GaRun run = run_ga(g, options, evals, pop, search);
+                                    : std::clamp(2000000 / std::max(sg.faces(), 1), 100, 2000);
+    GaRun run = run_ga(g, sg, options, evals, pop, search);
     st.attempts += run.evaluations;
     if (ga_history) *ga_history = run.best_score_per_generation;
     ranked.push_back(run.best);

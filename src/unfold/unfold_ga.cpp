@@ -33,8 +33,8 @@ struct Individual {
 
 }  // namespace
 
-GaRun run_ga(const ShellGraph& g, const UnfoldOptions& options, int evaluations, int population,
-             const SearchResult& seeds) {
+GaRun run_ga(const ShellGraph& g, const SearchGraph& sg, const UnfoldOptions& options, int evaluations,
+             int population, const SearchResult& seeds) {
   GaRun run;
   const NetMetrics ref = seeds.evaluated.front().metrics;
   const int n = g.num_groups();
@@ -47,7 +47,7 @@ GaRun run_ga(const ShellGraph& g, const UnfoldOptions& options, int evaluations,
     auto h = tree_hash(folded);
     auto it = cache.find(h);
     if (it == cache.end()) {
-      it = cache.emplace(h, decode(g, folded, true).metrics).first;
+      it = cache.emplace(h, sg.evaluate(folded)).first;
       ++run.evaluations;
     }
     ind.metrics = it->second;

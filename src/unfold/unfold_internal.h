@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <random>
 #include <string>
@@ -29,6 +30,12 @@ struct ShellGraph {
   std::vector<std::array<int, 2>> group_ends; ///< chain end vertices of each group
   std::vector<double> group_length;
   std::vector<int> flat_edges;
+  /// Face corners in their facet's own plane coordinates (projection on the facet's mean plane).
+  /// A facet is laid out as one rigid chart: its triangles meet exactly, however much rounding
+  /// bends it within flat_angle (developing 256 nearly coplanar triangles one by one would let
+  /// rounding open gaps and overlaps inside the facet).
+  std::vector<std::array<Eigen::Vector2d, 3>> chart;
+  std::vector<std::array<Eigen::Vector3d, 3>> facet_frame;  ///< per facet: origin, u, w (u x w outward)
   bool convex = true;
   int reflex_edges = 0;
   double max_reflex_angle = 0;
@@ -56,7 +63,30 @@ struct Decoded {
 };
 std::vector<char> folded_groups(const ShellGraph& g, const Genome& w);
 std::uint64_t tree_hash(const std::vector<char>& folded);
-Decoded decode(const ShellGraph& g, const std::vector<char>& folded, bool first_overlap_only);
+/// `max_overlaps`: stop the overlap search after that many pairs (0 = no overlap search).
+Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t max_overlaps);
+
+/// What the search and the GA decode their trees on. On a shell whose facets are subdivided (a
+/// cube of 76,800 triangles has 6 facets) that is the coarse shell: each facet as a fan of its
+/// polytope corners. Groups, cut lengths, hull and overlaps are the same (a convex facet is the
+/// union of its triangles) at the cost of the facets, not the triangles; the returned net is
+/// still decoded on the fine shell and checked in full.
+struct SearchGraph {
+  const ShellGraph* fine = nullptr;
+  ShellGraph coarse;
+  bool use_coarse = false;
+  std::vector<int> group_map;  ///< fine group -> coarse group (when use_coarse)
+  int faces() const { return static_cast<int>((use_coarse ? coarse : *fine).F.size()); }
+  /// Features of the tree `folded` (fine groups); overlapping_pairs is 0 or 1.
+  NetMetrics evaluate(const std::vector<char>& folded) const;
+};
+SearchGraph make_search_graph(const ShellGraph& g, double flat_angle);
+
+/// Directions worth trying first for the direction-based heuristics: away from the largest
+/// facets and toward the polytope vertices of highest degree. On a cone or pyramid (thousands
+/// of thin faces around an apex) steepest edge toward the apex is the petal unfolding, which
+/// never overlaps; random directions almost always do.
+std::vector<Eigen::Vector3d> preferred_directions(const ShellGraph& g);
 
 /// Rotates the net so that its minimum-area bounding rectangle is axis-aligned (longer side
 /// along x) and moves it to the positive quadrant. Shared corners stay bitwise shared.
@@ -99,7 +129,8 @@ struct SearchResult {
   std::vector<Candidate> evaluated;
   int best = -1;  ///< index of the best by the objective (overlap-free first), -1 if none tried
 };
-SearchResult search_heuristics(const ShellGraph& g, const UnfoldOptions& options);
+/// `extended`: keep retrying (up to 8x the tries) while no net is overlap-free.
+SearchResult search_heuristics(const ShellGraph& g, const SearchGraph& sg, const UnfoldOptions& options, bool extended);
 
 /// Genetic search seeded with the search's candidates; returns the best genome found (the
 /// search's best when nothing better turns up) and appends the best score per generation.
@@ -108,8 +139,8 @@ struct GaRun {
   int evaluations = 0;
   std::vector<double> best_score_per_generation;
 };
-GaRun run_ga(const ShellGraph& g, const UnfoldOptions& options, int evaluations, int population,
-             const SearchResult& seeds);
+GaRun run_ga(const ShellGraph& g, const SearchGraph& sg, const UnfoldOptions& options, int evaluations,
+             int population, const SearchResult& seeds);
 
 /// The final net of a genome: decoded, normalised, overlaps counted in full.
 Net finish_net(const ShellGraph& g, const Genome& genome, NetMetrics* metrics);

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 #include <numeric>
 #include <unordered_map>
 
@@ -133,6 +134,32 @@ ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::ar
     if (facet_id[r] < 0) facet_id[r] = g.num_facets++;
     g.facet[f] = facet_id[r];
   }
+  // Facet charts: mean plane by the area vector, first face's first edge as the u axis.
+  {
+    std::vector<Eigen::Vector3d> normal(g.num_facets, Eigen::Vector3d::Zero());
+    std::vector<int> first(g.num_facets, -1);
+    for (int f = 0; f < nf; ++f) {
+      const auto& t = g.F[f];
+      normal[g.facet[f]] += (g.V[t[1]] - g.V[t[0]]).cross(g.V[t[2]] - g.V[t[0]]);
+      if (first[g.facet[f]] < 0) first[g.facet[f]] = f;
+    }
+    g.facet_frame.resize(g.num_facets);
+    for (int k = 0; k < g.num_facets; ++k) {
+      Eigen::Vector3d n = normal[k].normalized();
+      const auto& t = g.F[first[k]];
+      Eigen::Vector3d u = g.V[t[1]] - g.V[t[0]];
+      u = (u - n * n.dot(u)).normalized();
+      g.facet_frame[k] = {g.V[t[0]], u, n.cross(u)};
+    }
+    g.chart.resize(nf);
+    for (int f = 0; f < nf; ++f) {
+      const auto& fr = g.facet_frame[g.facet[f]];
+      for (int k = 0; k < 3; ++k) {
+        Eigen::Vector3d d = g.V[g.F[f][k]] - fr[0];
+        g.chart[f][k] = Eigen::Vector2d(d.dot(fr[1]), d.dot(fr[2]));
+      }
+    }
+  }
   std::map<std::pair<int, int>, int> group_of;
   for (int i = 0; i < static_cast<int>(g.edges.size()); ++i) {
     const auto& e = g.edges[i];
@@ -171,6 +198,131 @@ ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::ar
     g.group_length.push_back(len);
   }
   return g;
+}
+
+SearchGraph make_search_graph(const ShellGraph& g, double flat_angle) {
+  SearchGraph sg;
+  sg.fine = &g;
+  const int nf = static_cast<int>(g.F.size());
+  // Worth it only when facets hold several triangles on average, and exact only when every
+  // facet is planar to rounding: a facet bent within flat_angle is laid out from all its
+  // vertices, a fan of its corners would be a slightly different polygon.
+  if (g.num_facets * 2 > nf) return sg;
+  for (int f = 0; f < nf; ++f) {
+    const auto& fr = g.facet_frame[g.facet[f]];
+    Eigen::Vector3d n = fr[1].cross(fr[2]);
+    for (int v : g.F[f])
+      if (std::abs((g.V[v] - fr[0]).dot(n)) > 1e-9 * g.scale) return sg;
+  }
+  // Polytope corners: vertices where three or more facets meet.
+  std::vector<std::vector<int>> vfacets(g.V.size());
+  for (int f = 0; f < nf; ++f)
+    for (int v : g.F[f]) {
+      auto& l = vfacets[v];
+      if (std::find(l.begin(), l.end(), g.facet[f]) == l.end()) l.push_back(g.facet[f]);
+    }
+  // Boundary of each facet, directed counter-clockwise (as its faces hold the edges).
+  std::vector<std::vector<std::pair<int, int>>> boundary(g.num_facets);
+  for (int gi = 0; gi < g.num_groups(); ++gi)
+    for (int i : g.group_edges[gi]) {
+      const auto& e = g.edges[i];
+      boundary[g.facet[e.f0]].push_back({e.v0, e.v1});
+      boundary[g.facet[e.f1]].push_back({e.v1, e.v0});
+    }
+  std::vector<int> new_index(g.V.size(), -1);
+  std::vector<Eigen::Vector3d> V;
+  std::vector<std::array<int, 3>> F;
+  std::vector<int> fan_facet;
+  for (int k = 0; k < g.num_facets; ++k) {
+    std::map<int, int> next;
+    for (auto [a, b] : boundary[k])
+      if (!next.emplace(a, b).second) return sg;  // the facet touches itself at a vertex
+    // One loop through every boundary edge, listing its corners in order.
+    int start = -1;
+    for (auto [a, b] : next)
+      if (vfacets[a].size() >= 3) {
+        start = a;
+        break;
+      }
+    if (start < 0) return sg;
+    std::vector<int> corners;
+    int v = start;
+    std::size_t walked = 0;
+    do {
+      if (vfacets[v].size() >= 3) corners.push_back(v);
+      auto it = next.find(v);
+      if (it == next.end()) return sg;
+      v = it->second;
+      ++walked;
+    } while (v != start && walked <= next.size());
+    if (v != start || walked != next.size() || corners.size() < 3) return sg;
+    for (int c : corners)
+      if (new_index[c] < 0) new_index[c] = static_cast<int>(V.size()), V.push_back(g.V[c]);
+    for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
+      F.push_back({new_index[corners[0]], new_index[corners[i]], new_index[corners[i + 1]]});
+      fan_facet.push_back(k);
+    }
+  }
+  if (F.size() * 2 > static_cast<std::size_t>(nf)) return sg;
+  try {
+    sg.coarse = build_shell_graph(std::move(V), std::move(F), flat_angle);
+  } catch (const InputError&) {
+    return sg;  // e.g. three collinear corners: a degenerate fan triangle
+  }
+  // The coarse facets must be the fine ones, in the same order, with the same adjacency.
+  const ShellGraph& c = sg.coarse;
+  if (c.num_facets != g.num_facets || c.num_groups() != g.num_groups()) return sg;
+  for (std::size_t f = 0; f < c.F.size(); ++f)
+    if (c.facet[f] != fan_facet[f]) return sg;
+  std::map<std::pair<int, int>, int> fine_group;
+  for (int gi = 0; gi < g.num_groups(); ++gi) {
+    const auto& e = g.edges[g.group_edges[gi][0]];
+    fine_group[std::minmax(g.facet[e.f0], g.facet[e.f1])] = gi;
+  }
+  sg.group_map.assign(g.num_groups(), -1);
+  for (int ci = 0; ci < c.num_groups(); ++ci) {
+    const auto& e = c.edges[c.group_edges[ci][0]];
+    auto it = fine_group.find(std::minmax(c.facet[e.f0], c.facet[e.f1]));
+    if (it == fine_group.end() || sg.group_map[it->second] >= 0) return sg;
+    sg.group_map[it->second] = ci;
+  }
+  sg.use_coarse = true;
+  return sg;
+}
+
+NetMetrics SearchGraph::evaluate(const std::vector<char>& folded) const {
+  if (!use_coarse) return decode(*fine, folded, 1).metrics;
+  std::vector<char> fc(folded.size());
+  for (std::size_t gi = 0; gi < folded.size(); ++gi) fc[group_map[gi]] = folded[gi];
+  return decode(coarse, fc, 1).metrics;
+}
+
+std::vector<Eigen::Vector3d> preferred_directions(const ShellGraph& g) {
+  std::vector<Eigen::Vector3d> area(g.num_facets, Eigen::Vector3d::Zero());
+  Eigen::Vector3d centroid = Eigen::Vector3d::Zero();
+  for (std::size_t f = 0; f < g.F.size(); ++f) {
+    const auto& t = g.F[f];
+    area[g.facet[f]] += (g.V[t[1]] - g.V[t[0]]).cross(g.V[t[2]] - g.V[t[0]]);
+  }
+  for (const auto& p : g.V) centroid += p;
+  centroid /= static_cast<double>(std::max<std::size_t>(g.V.size(), 1));
+  std::vector<int> facets(g.num_facets);
+  std::iota(facets.begin(), facets.end(), 0);
+  std::stable_sort(facets.begin(), facets.end(), [&](int a, int b) { return area[a].norm() > area[b].norm(); });
+  std::map<int, int> degree;
+  for (const auto& ends : g.group_ends) ++degree[ends[0]], ++degree[ends[1]];
+  std::vector<std::pair<int, int>> by_degree;  // (-degree, vertex): highest degree first
+  for (auto [v, d] : degree) by_degree.push_back({-d, v});
+  std::sort(by_degree.begin(), by_degree.end());
+  std::vector<Eigen::Vector3d> dirs;
+  auto add = [&](const Eigen::Vector3d& d) {
+    if (d.norm() > 0) dirs.push_back(d.normalized());
+  };
+  for (std::size_t i = 0; i < 3; ++i) {
+    if (i < facets.size()) add(-area[facets[i]]);
+    if (i < by_degree.size()) add(g.V[by_degree[i].second] - centroid);
+  }
+  return dirs;
 }
 
 ShellGraph build_shell_graph(const Mesh& mesh, double flat_angle) {

@@ -11,6 +11,7 @@
 #include "dcshell/read_mesh.h"
 #include "dcshell/unfold.h"
 #include "dcshell/unfold_ga.h"
+#include "unfold/unfold_internal.h"
 #include "unfold_test_util.h"
 
 using namespace dcshell;
@@ -154,40 +155,7 @@ BOOST_AUTO_TEST_CASE(hand_made_overlapping_net_is_detected) {
   BOOST_TEST(!check_net(mirrored).oriented);
 }
 
-BOOST_AUTO_TEST_CASE(fold_check_catches_a_constructed_collision) {
-  // A unit square base (2 triangles) with a flap hinged on its left and right sides. Each flap is
-  // 0.8 wide and folds up by 170 degrees over the base, so they cross before the end.
-  auto flap_net = [](double angle) {
-    Net n;
-    n.shell_vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {-0.8, 0.5, 0}, {1.8, 0.5, 0}};
-    n.shell_faces = {{0, 1, 2}, {0, 2, 3}, {3, 4, 0}, {1, 5, 2}};
-    for (auto& t : n.shell_faces) {
-      std::array<Eigen::Vector2d, 3> c;
-      for (int k = 0; k < 3; ++k) c[k] = n.shell_vertices[t[k]].head<2>();
-      n.corners.push_back(c);
-    }
-    n.parent = {-1, 0, 1, 0};
-    auto edge = [](int v0, int v1, int f0, int f1, double a) {
-      Net::Edge e;
-      e.v0 = v0, e.v1 = v1, e.f0 = f0, e.f1 = f1, e.fold = true, e.fold_angle = a;
-      return e;
-    };
-    n.edges = {edge(0, 2, 0, 1, 0.0), edge(3, 0, 1, 2, angle), edge(1, 2, 0, 3, angle)};
-    return n;
-  };
-  const double deg = M_PI / 180;
-  // Folding "up" means towards +z: negative angles (the outside faces +z, convex folds go down).
-  auto ok = check_folding(flap_net(-80 * deg));
-  BOOST_TEST(ok.verified, ok.message);
-  auto bad = check_folding(flap_net(-170 * deg));
-  BOOST_TEST(!bad.verified);
-  BOOST_TEST(((bad.face_a == 2 && bad.face_b == 3) || (bad.face_a == 3 && bad.face_b == 2)));
-  BOOST_TEST(bad.t > 0.5);
-  BOOST_TEST(bad.t < 1.0);
-  // The reported state really is (or is about to be) a contact: the flaps are close there.
-  auto faces = folded_faces(flap_net(-170 * deg), bad.t);
-  BOOST_TEST(faces[2][1].z() > 0.0);
-}
+// The folding check has its own suite: test_fold_check.cpp.
 
 BOOST_AUTO_TEST_CASE(net_obj_lists_shell_faces_in_order) {
   Net net = unfold_convex_mesh(cube_triangles());
@@ -275,4 +243,44 @@ BOOST_AUTO_TEST_CASE(shared_convex_models) {
     ++tested;
   }
   BOOST_TEST(tested >= 29);  // all 34 but the 5 above 5,000 faces
+}
+
+BOOST_AUTO_TEST_CASE(search_on_coarse_facets_matches_the_fine_shell) {
+  // The search decodes trees on one fan per facet; its features must be the fine net's.
+  using namespace dcshell::unfold_detail;
+  Mesh m = subdivided_cube(5);
+  ShellGraph g = build_shell_graph(m, 1e-4);
+  SearchGraph sg = make_search_graph(g, 1e-4);
+  BOOST_TEST_REQUIRE(sg.use_coarse);
+  BOOST_TEST(sg.coarse.F.size() == 12u);
+  BOOST_TEST(g.F.size() == 300u);
+  Rng rng(3);
+  for (int i = 0; i < 20; ++i) {
+    auto folded = folded_groups(g, random_weights(g, rng));
+    NetMetrics coarse = sg.evaluate(folded), fine = decode(g, folded, 1).metrics;
+    BOOST_TEST(std::abs(coarse.cut_length - fine.cut_length) <= 1e-9 * fine.cut_length);
+    BOOST_TEST(std::abs(coarse.hull_area - fine.hull_area) <= 1e-9 * fine.hull_area);
+    BOOST_TEST(coarse.overlapping_pairs == fine.overlapping_pairs);
+  }
+  // A shell without subdivided facets is searched as it is.
+  ShellGraph ico = build_shell_graph(icosahedron(), 1e-4);
+  BOOST_TEST(!make_search_graph(ico, 1e-4).use_coarse);
+  UnfoldStats st;
+  Net net = unfold_convex_mesh(m, {}, &st);
+  check_good_net(net, "subdivided cube");
+  BOOST_TEST(st.result.cut_length == 35.0);  // 7 cube edges of length 5
+}
+
+BOOST_AUTO_TEST_CASE(fine_pyramid_unfolds_overlap_free) {
+  // Thousands of thin faces around an apex: steepest edge from random directions overlaps;
+  // toward the apex it is the petal unfolding.
+  Mesh m = fine_pyramid(1024, 2.0);
+  for (auto h : {UnfoldHeuristic::steepest, UnfoldHeuristic::best}) {
+    UnfoldOptions o;
+    o.heuristic = h;
+    o.fold_candidates = 0;
+    UnfoldStats st;
+    Net net = unfold_convex_mesh(m, o, &st);
+    check_good_net(net, "fine pyramid, " + to_string(h));
+  }
 }

@@ -69,6 +69,49 @@ inline Mesh dodecahedron() {
   return make_mesh(v, f);
 }
 
+/// Cube [0,n]^3 with every face split into n x n squares of 2 triangles: 6 facets, 12 n^2 triangles.
+inline Mesh subdivided_cube(int n) {
+  std::vector<std::array<double, 3>> v;
+  std::vector<std::vector<int>> tris;
+  // Each face: origin o, axes u, w with u x w outward; vertices duplicated per face and then
+  // merged by coordinates so the faces share their edges.
+  const std::array<std::array<std::array<double, 3>, 3>, 6> faces = {{
+      {{{0, 0, 0}, {0, 1, 0}, {1, 0, 0}}}, {{{0, 0, 1}, {1, 0, 0}, {0, 1, 0}}},
+      {{{0, 0, 0}, {1, 0, 0}, {0, 0, 1}}}, {{{0, 1, 0}, {0, 0, 1}, {1, 0, 0}}},
+      {{{0, 0, 0}, {0, 0, 1}, {0, 1, 0}}}, {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}}}};
+  auto id = [&](std::array<double, 3> p) {
+    auto it = std::find(v.begin(), v.end(), p);
+    if (it != v.end()) return static_cast<int>(it - v.begin());
+    v.push_back(p);
+    return static_cast<int>(v.size()) - 1;
+  };
+  for (auto& f : faces)
+    for (int i = 0; i < n; ++i)
+      for (int j = 0; j < n; ++j) {
+        auto at = [&](int a, int b) {
+          std::array<double, 3> p;
+          for (int k = 0; k < 3; ++k) p[k] = n * f[0][k] + a * f[1][k] + b * f[2][k];
+          return id(p);
+        };
+        int p00 = at(i, j), p10 = at(i + 1, j), p11 = at(i + 1, j + 1), p01 = at(i, j + 1);
+        tris.push_back({p00, p10, p11}), tris.push_back({p00, p11, p01});
+      }
+  return make_mesh(v, tris);
+}
+
+/// A right pyramid over a regular n-gon (radius 1, apex at height h), the base fan-triangulated
+/// from its centre: n thin lateral faces around the apex, like the shared pyramid2 (n = 4096).
+inline Mesh fine_pyramid(int n, double h) {
+  std::vector<std::array<double, 3>> v = {{0, 0, h}, {0, 0, 0}};
+  std::vector<std::vector<int>> tris;
+  for (int i = 0; i < n; ++i) v.push_back({std::cos(2 * M_PI * i / n), std::sin(2 * M_PI * i / n), 0});
+  for (int i = 0; i < n; ++i) {
+    int a = 2 + i, b = 2 + (i + 1) % n;
+    tris.push_back({a, b, 0}), tris.push_back({b, a, 1});
+  }
+  return make_mesh(v, tris);
+}
+
 inline std::string shared_data() { return DCSHELL_SHARED_DATA; }
 inline bool have_shared_data() { return std::filesystem::is_directory(shared_data()); }
 
