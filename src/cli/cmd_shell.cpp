@@ -1,5 +1,6 @@
 // `dcshell shell`: certified DC-shells of a composite shape.
 #include <boost/program_options.hpp>
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <sstream>
@@ -214,7 +215,9 @@ int run_shell(int argc, char** argv) {
       for (auto v : r.vanished) std::cerr << "note: part " << parts[v].name << " was cut away entirely\n";
       char buf[200];
       std::snprintf(buf, sizeof buf, "%zu parts -> %zu shells, %zu overlapping pairs, volume loss %.4f%%, %s\n",
-                    parts.size(), r.shells.size(), r.overlapping_pairs, 100 * r.volume_loss,
+                    parts.size(), r.shells.size(), r.overlapping_pairs,
+                    // a loss within rounding of zero (shells meeting exactly) printed as 0, not -0
+                    std::fabs(r.volume_loss) < 5e-7 ? 0.0 : 100 * r.volume_loss,
                     certified ? "certified" : "NOT certified");
       std::cerr << buf;
       if (!certified) {
