@@ -81,12 +81,7 @@ int main(int argc, char** argv) {
       "max-faces", po::value(&max_faces), "skip larger convex models")("only", po::value(&only), "only inputs whose name contains this")(
       "no-shells", "composite models: hull nets only (skip building DC-shells)");
   po::variables_map vm;
-  po::store(po::parse_command_line(argc, argv, opts), vm);
-  po::notify(vm);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (!fs::is_directory(data)) {
     std::cerr << "bench_fold: no data directory " << data << "; nothing to measure\n";
     return 0;

@@ -31,6 +31,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "bench_util.h"
 #include "dcshell/atomic_output.h"
 #include "dcshell/build_shells.h"
 #include "dcshell/convex_hull.h"
@@ -135,12 +136,7 @@ int main(int argc, char** argv) {
       "hulls", po::value(&hulls_on)->default_value(true), "hull table and plots")(
       "shells", po::value(&shells)->default_value(true), "shell table (runs the pipeline)");
   po::variables_map vm;
-  po::store(po::parse_command_line(argc, argv, opts), vm);
-  po::notify(vm);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   const fs::path root = fs::path(data) / "composite";
   if (!fs::is_directory(root)) {
     std::cerr << "bench_remesh: no " << root << " (shared data absent); nothing to do\n";

@@ -19,6 +19,7 @@
 #include <map>
 #include <sstream>
 
+#include "bench_util.h"
 #include "dcshell/convex_hull.h"
 #include "dcshell/fold_check.h"
 #include "dcshell/load_parts.h"
@@ -137,12 +138,7 @@ int main(int argc, char** argv) {
       "only", po::value(&only), "comma-separated input names (file stems) to run; default all")(
       "shells", po::value(&shells_dir), "directory of DC-shell sets DIR/<Model>/shell_*.obj (per-model totals)");
   po::variables_map vm;
-  po::store(po::parse_command_line(argc, argv, opts), vm);
-  po::notify(vm);
-  if (vm.count("help")) {
-    std::cout << opts << "\n";
-    return 0;
-  }
+  if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (!fs::is_directory(data)) {
     std::cerr << "bench_unfold: no data directory " << data << "\n";
     return 2;

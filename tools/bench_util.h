@@ -1,12 +1,28 @@
 // Shared by the tools/bench_* programs: median wall time and the shared data sets.
 #pragma once
+#include <boost/program_options.hpp>
+
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <iostream>
 #include <vector>
 
 namespace dcshell::bench {
+
+/// Parses the command line into vm; prints the options and returns false for --help.
+inline bool parse_options(int argc, char** argv, const boost::program_options::options_description& opts,
+                          boost::program_options::variables_map& vm) {
+  namespace po = boost::program_options;
+  po::store(po::parse_command_line(argc, argv, opts), vm);
+  po::notify(vm);
+  if (vm.count("help")) {
+    std::cout << opts << "\n";
+    return false;
+  }
+  return true;
+}
 
 /// Median wall-clock seconds of `runs` calls of f.
 inline double median_seconds(int runs, const std::function<void()>& f) {
