@@ -1,7 +1,8 @@
 // Benchmark of the whole `shell` pipeline (parts -> certified shells, as `dcshell shell` runs
 // it, without file output) and the generator of doc/results.md (issue #3, section 6).
 // For every shared composite model, every shared ACD set and every bundled example, and for
-// every cut method: parts, overlapping pairs, shells, volume loss, certification, the median
+// every cut method (and, on the composite models, `full` with global sweeps): parts,
+// overlapping pairs, shells, volume loss, certification, the median
 // wall time of --runs runs in total and per stage, and the peak memory of the process that ran
 // the set (each set runs in a forked child, so peaks do not accumulate across sets).
 // Usage: bench_shell [--data DIR] [--examples DIR] [--runs N] [--out FILE] [--only NAME]
@@ -56,9 +57,20 @@ std::string run_set(const fs::path& set, const std::string& group, int runs) {
   });
   std::ostringstream out;
   out.precision(17);
+  // The four methods; on the composite models also `full` with global sweeps (re-fit from
+  // scratch), the evidence for the default warm-started sweeps.
+  std::vector<std::pair<std::string, ShellOptions>> variants;
   for (CutMethod m : kMethods) {
     ShellOptions opt;
     opt.cut.method = m;
+    variants.push_back({to_string(m), opt});
+  }
+  if (group == "composite") {
+    ShellOptions opt;
+    opt.global_sweeps = true;
+    variants.push_back({"full-global", opt});
+  }
+  for (const auto& [label, opt] : variants) {
     ShellResult r;
     std::vector<double> total;
     std::map<std::string, std::vector<double>> stage;
@@ -66,7 +78,7 @@ std::string run_set(const fs::path& set, const std::string& group, int runs) {
       total.push_back(bench::median_seconds(1, [&] { r = build_shells(parts, opt); }));
       for (const auto& t : r.times) stage[t.stage].push_back(t.seconds);
     }
-    out << set.filename().string() << '\t' << group << '\t' << to_string(m) << '\t' << parts.size() << '\t'
+    out << set.filename().string() << '\t' << group << '\t' << label << '\t' << parts.size() << '\t'
         << r.overlapping_pairs << '\t' << r.shells.size() << '\t' << r.volume_loss << '\t'
         << r.certification.certified() << '\t' << load + median(total) << '\t' << load;
     for (const char* s : kStages) out << '\t' << median(stage[s]);
@@ -219,12 +231,26 @@ int main(int argc, char** argv) {
       std::map<std::string, const Row*> by;
       for (const auto& r : rows)
         if (r.set == name && r.group == "composite") by[r.method] = &r;
-      if (by.size() != 4) continue;
+      if (!by.count("lsf") || !by.count("svm") || !by.count("exact") || !by.count("full")) continue;
       const double full = 100 * by["full"]->loss, exact = 100 * by["exact"]->loss, svm = 100 * by["svm"]->loss;
       std::snprintf(line, sizeof line, "| %s | %.3f%% | %.3f%% | %.3f%% | %.3f%% | %.3f%% | %.2f%% | %.3f | %s | %.3f |\n",
                     name.c_str(), 100 * by["lsf"]->loss, svm, exact, full, ref.first, ref.second, full / ref.first,
                     full <= exact && exact <= svm ? "yes" : "no", by["full"]->total);
       md << line;
+    }
+  }
+  if (any_composite) {
+    md << "\n### Refinement sweeps: warm-started (default) against global re-fits (`--global-sweeps`)\n\n"
+          "| model | full loss | full total s | full-global loss | full-global total s | time ratio |\n"
+          "|---|---|---|---|---|---|\n";
+    for (const auto& w : rows) {
+      if (w.group != "composite" || w.method != "full") continue;
+      for (const auto& g : rows)
+        if (g.set == w.set && g.method == "full-global") {
+          std::snprintf(line, sizeof line, "| %s | %.4f%% | %.3f | %.4f%% | %.3f | %.2f |\n", w.set.c_str(), 100 * w.loss,
+                        w.total, 100 * g.loss, g.total, g.total / w.total);
+          md << line;
+        }
     }
   }
   table("acd", "Convex decompositions (`../shared/data/acd`: V-HACD and CoACD hulls)");

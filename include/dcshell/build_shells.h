@@ -34,6 +34,8 @@ struct ShellOptions {
   /// a shell) by sqrt(1 + R) - 1, so that the two compound to R.
   int simplify_iterations = 0;
   double max_volume_increase = 0.05;
+  /// Remeshing ends by giving flat facets (cut faces) their fattest triangulation (remesh.h).
+  bool fatten_flat_facets = true;
   /// Called with (stage, done, total) as work proceeds.
   std::function<void(const std::string&, std::size_t, std::size_t)> progress;
 };

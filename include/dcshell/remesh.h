@@ -6,6 +6,7 @@
 #include <functional>
 #include <vector>
 
+#include "dcshell/flat_facets.h"
 #include "dcshell/kernel.h"
 #include "dcshell/simplify.h"
 
@@ -15,6 +16,9 @@ struct RemeshOptions {
   int iterations = 10;               ///< simplify + smooth rounds (the paper: 10)
   double max_volume_increase = 0.05; ///< bound on (V_after - V_before) / V_before (the paper: 5%)
   std::size_t target_faces = 0;      ///< optional lower bound on the face count (0: none)
+  /// Finish by re-triangulating flat facets (cut faces above all) by their fattest triangulation
+  /// (fatten_flat_facets): free in faces, about 1e-9 of their size in depth.
+  bool fatten_flat_facets = true;
   /// Called after each iteration with the working mesh (convex; for benchmarks and progress).
   std::function<void(int iteration, const Mesh& mesh)> on_iteration;
 };
@@ -24,6 +28,7 @@ struct RemeshStats {
   double fatness_before = 0, fatness_after = 0;  ///< weighted_fatness
   double volume_before = 0, volume_after = 0;
   std::size_t collapses = 0, moves = 0;
+  FlatFacetStats flat;  ///< the final flat-facet step
   double volume_increase() const { return volume_before > 0 ? volume_after / volume_before - 1.0 : 0.0; }
 };
 
@@ -36,6 +41,9 @@ struct RemeshStats {
 /// both within the whole volume budget; the first N iterations
 /// of a run are the same whatever N, and it stops early once an iteration changes nothing.
 /// Vertices on a constraint plane stay on it or inside, so cut faces stay where they were.
+/// With options.fatten_flat_facets the result's flat facets are finally re-triangulated
+/// (flat_facets.h): a facet on a constraint plane may then sink by about 1e-9 of its size, the
+/// only place where the result does not contain `shell` exactly (stats->flat.max_inward says how far).
 /// Throws InputError if `shell` is not exactly convex and closed or violates `constraints`.
 Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints, const RemeshOptions& options,
                          RemeshStats* stats = nullptr);

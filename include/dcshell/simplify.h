@@ -23,10 +23,14 @@ struct ShellConstraints {
   /// POSITIVE ((q-p)x(r-p) points outward). Used for a face shared with a neighbour, whose exact
   /// plane through three double points is not a CutPlane in general.
   std::vector<std::array<Point3, 3>> face_planes;
+  /// Keep every point on or below (ON_NEGATIVE_SIDE or on) the exact plane: a separator with
+  /// rational coefficients, for neighbours that touch along an edge or a cut face rounded
+  /// differently on each side, so that no plane through their own double points separates them.
+  std::vector<Epeck::Plane_3> exact_planes;
 
   /// Exact test of one point against every halfspace.
   bool satisfied_by(const Point3& x) const;
-  bool empty() const { return cut_planes.empty() && face_planes.empty(); }
+  bool empty() const { return cut_planes.empty() && face_planes.empty() && exact_planes.empty(); }
 };
 
 struct SimplifyOptions {

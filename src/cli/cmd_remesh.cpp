@@ -54,12 +54,14 @@ int run_remesh(int argc, char** argv) {
         "max-volume-increase,r", po::value(&ro.max_volume_increase)->default_value(0.05),
         "bound on the volume increase of each shell, as a ratio (the paper: 0.05)")(
         "target-faces", po::value(&ro.target_faces)->default_value(0), "do not simplify below this many faces (0: no bound)")(
+        "no-domes", "keep flat facets on neighbour planes exactly where they were (no fattest re-triangulation by 1e-9 domes)")(
         "force,f", "replace an existing non-empty output directory");
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
     if (inputs.empty()) throw InputError("no input shells (see 'dcshell remesh --help')");
     if (out.empty()) throw InputError("--out DIR is required");
     if (ro.iterations < 0) throw InputError("--iterations must be >= 0");
+    ro.fatten_flat_facets = vm.count("no-domes") == 0;
     if (!(ro.max_volume_increase >= 0) || !std::isfinite(ro.max_volume_increase))
       throw InputError("--max-volume-increase must be a finite number >= 0");
     AtomicDirectory dir(out, vm.count("force") > 0, inputs);  // refuses a bad target before any work
@@ -117,7 +119,9 @@ int run_remesh(int argc, char** argv) {
         json.field("volume_before", s.volume_before).field("volume_after", s.volume_after);
         json.field("volume_increase", s.volume_increase());
         json.field("collapses", s.collapses).field("moves", s.moves);
-        json.field("neighbour_planes", constraints[i].cut_planes.size() + constraints[i].face_planes.size());
+        json.field("domed_facets", s.flat.outward + s.flat.inward).field("max_sink", s.flat.max_inward);
+        json.field("neighbour_planes", constraints[i].cut_planes.size() + constraints[i].face_planes.size() +
+                                                   constraints[i].exact_planes.size());
         json.end_object();
       }
       json.end_array();

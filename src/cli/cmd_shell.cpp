@@ -98,6 +98,8 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
           .field("fatness_before", s.remesh.fatness_before)
           .field("fatness_after", s.remesh.fatness_after)
           .field("volume_increase", s.remesh.volume_increase())
+          .field("domed_facets", s.remesh.flat.outward + s.remesh.flat.inward)
+          .field("max_sink", s.remesh.flat.max_inward)
           .end_object();
     json.end_object();
   }
@@ -157,12 +159,14 @@ int run_shell(int argc, char** argv) {
         "simplify + regularise hulls and shells (paper: 10; 0 = off)")(
         "max-volume-increase", po::value(&opt.max_volume_increase)->default_value(0.05),
         "volume increase allowed to remeshing (paper: 0.05), split between hulls and shells")(
+        "no-domes", "remeshing keeps cut faces exactly where they were (no fattest re-triangulation by 1e-9 domes)")(
         "force,f", "replace a non-empty output directory")("quiet,q", "no progress or warnings on stderr")(
         "no-timings", "leave per-stage times out of report.json (byte-identical reruns)");
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
     if (out.empty()) throw InputError("missing --out DIR");
     if (inputs.empty()) throw InputError("no input (see 'dcshell shell --help')");
+    opt.fatten_flat_facets = vm.count("no-domes") == 0;
     opt.cut.method = parse_cut_method(method);
     opt.cut.seed = seed;
     if (!(opt.cut.lambda >= 0)) throw InputError("--lambda must be >= 0");

@@ -5,6 +5,9 @@
 #include <CGAL/QP_functions.h>
 #include <CGAL/QP_models.h>
 
+#include <type_traits>
+#include <utility>
+
 namespace dcshell::remesh_detail {
 namespace {
 
@@ -48,6 +51,57 @@ std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, co
   }
   p.set_c0(target.squaredNorm());
   return extract(CGAL::solve_quadratic_program(p, CGAL::Gmpzf()));
+}
+
+std::optional<Epeck::Plane_3> separating_plane_exact(const std::vector<Point3>& below, const std::vector<Point3>& above,
+                                                     const Eigen::Vector3d& n0) {
+  // Variables n (0..2), d_below (3), d_above (4): n·x - d_below <= 0 below, d_above - n·x <= 0
+  // above, n·n0 = 1, minimise d_below - d_above.
+  Program p(CGAL::SMALLER, false, 0, false, 0);
+  const double bound = 4.0 / n0.norm();  // |n| = 1/|n0| along n0; room to tilt, but bounded
+  for (int j = 0; j < 3; ++j) {
+    p.set_l(j, true, -bound);
+    p.set_u(j, true, bound);
+  }
+  int row = 0;
+  for (const Point3& x : below) {
+    for (int j = 0; j < 3; ++j) p.set_a(j, row, x[j]);
+    p.set_a(3, row, -1.0);
+    ++row;
+  }
+  for (const Point3& x : above) {
+    for (int j = 0; j < 3; ++j) p.set_a(j, row, -x[j]);
+    p.set_a(4, row, 1.0);
+    ++row;
+  }
+  for (int j = 0; j < 3; ++j) p.set_a(j, row, n0[j]);
+  p.set_r(row, CGAL::EQUAL);
+  p.set_b(row, 1.0);
+  p.set_c(3, 1.0);
+  p.set_c(4, -1.0);
+  const Solution s = CGAL::solve_linear_program(p, CGAL::Gmpzf());
+  if (!s.is_optimal()) return std::nullopt;
+  // Exact values: Gmpzf quotients to the rationals of Epeck.
+  using ET = std::decay_t<decltype(std::declval<const Epeck::FT&>().exact())>;
+  auto rational = [](const CGAL::Gmpzf& z) {
+    mpq_t q;
+    mpq_init(q);
+    mpq_set_z(q, z.man());
+    if (z.exp() >= 0)
+      mpq_mul_2exp(q, q, static_cast<mp_bitcnt_t>(z.exp()));
+    else
+      mpq_div_2exp(q, q, static_cast<mp_bitcnt_t>(-z.exp()));
+    ET r(q);
+    mpq_clear(q);
+    return r;
+  };
+  std::vector<ET> v;
+  for (auto it = s.variable_values_begin(); it != s.variable_values_end(); ++it)
+    v.push_back(rational(it->numerator()) / rational(it->denominator()));
+  if (v.size() != 5 || v[3] > v[4]) return std::nullopt;  // the sets overlap
+  using FT = Epeck::FT;
+  // n·x - (d_below + d_above) / 2 = 0.
+  return Epeck::Plane_3(FT(v[0]), FT(v[1]), FT(v[2]), FT(-(v[3] + v[4]) / 2));
 }
 
 }  // namespace dcshell::remesh_detail

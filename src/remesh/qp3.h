@@ -1,11 +1,13 @@
 // Private to the remesh module: the small LPs and QPs of the progressive hull and of the
 // constrained smoothing, in three variables. CGAL's QP solver is instantiated only in qp3.cpp
-// (template-heavy); the floating-point solver is in solve3.cpp; this header is plain data.
+// (template-heavy); the floating-point solver is in solve3.cpp.
 #pragma once
 #include <Eigen/Core>
 #include <cstddef>
 #include <optional>
 #include <vector>
+
+#include "dcshell/kernel.h"
 
 namespace dcshell::remesh_detail {
 
@@ -30,6 +32,12 @@ std::optional<Eigen::Vector3d> solve_qp3(const Eigen::Vector3d& target, const st
 /// and rounded to doubles: the fallback of the two above.
 std::optional<Eigen::Vector3d> solve_lp3_exact(const Eigen::Vector3d& c, const std::vector<Row>& rows);
 std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, const std::vector<Row>& rows);
+
+/// An exact plane with every point of `below` on or below it and every point of `above` on or
+/// above it, if there is one: the LP "maximise the gap" over normals n with n·n0 = 1 (|n| bounded),
+/// solved exactly (Gmpzf); the plane lies half-way across the gap. nullopt when the sets overlap.
+std::optional<Epeck::Plane_3> separating_plane_exact(const std::vector<Point3>& below, const std::vector<Point3>& above,
+                                                     const Eigen::Vector3d& n0);
 
 /// How many programs were solved, and how many took the exact fallback (process-wide; for benchmarks).
 std::size_t all_solves();

@@ -10,6 +10,7 @@
 #include "dcshell/convex_hull.h"
 #include "dcshell/error.h"
 #include "dcshell/fatness.h"
+#include "dcshell/flat_facets.h"
 #include "dcshell/regularise.h"
 #include "remesh/passes.h"
 
@@ -22,22 +23,14 @@ using namespace remesh_detail;
 // the shared models: per unit of volume, collapses raise fatness far more than smoothing does
 // (smoothing must move original hull vertices outward), so simplification may use it all.
 constexpr double kSimplifyShare = 1.0;
+// Share of the volume kept back for the flat-facet domes (fatten_flat_facets), which add about
+// 1e-9 of the volume where they bulge outward.
+constexpr double kDomeReserve = 1e-7;
 
 std::size_t triangle_count(const Mesh& m) {
   std::size_t n = 0;
   for (auto f : m.faces()) n += m.degree(f) - 2;
   return n;
-}
-
-// Every point on or below every face plane of the convex mesh `hull` (exact).
-bool encloses(const Mesh& hull, const std::vector<Point3>& points) {
-  for (auto f : hull.faces()) {
-    auto h = hull.halfedge(f);
-    const Point3 &a = hull.point(hull.source(h)), &b = hull.point(hull.target(h)), &c = hull.point(hull.target(hull.next(h)));
-    for (const Point3& p : points)
-      if (CGAL::orientation(a, b, c, p) == CGAL::POSITIVE) return false;
-  }
-  return true;
 }
 
 }  // namespace
@@ -65,11 +58,11 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
     SimplifyStats sst;
     RegulariseStats rst;
     SimplifyOptions so;
-    so.max_volume = v0 * (1 + kSimplifyShare * r);
+    so.max_volume = v0 * (1 + kSimplifyShare * r) * (1 - kDomeReserve);
     so.target_faces = options.target_faces;
     so.single_pass = true;
     so.fatter_only = true;
-    const double max_volume = v0 * (1 + r);
+    const double max_volume = v0 * (1 + r) * (1 - kDomeReserve);
     for (int it = 1; it <= n; ++it) {
       const std::size_t c = ws.simplify_pass(constraints, so, sst);
       const std::size_t mv = ws.regularise_sweep(original, constraints, max_volume, rst);
@@ -89,11 +82,18 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
   // and the input is returned unchanged (as its hull) if one fails.
   Mesh out = convex_hull_mesh(mesh_points(m));
   bool ok = !out.is_empty() && triangle_count(out) <= std::max(faces0, triangle_count(m)) &&
-            mesh_volume(out) <= v0 * (1 + r) * (1 + 1e-12) && encloses(out, original);
+            mesh_volume(out) <= v0 * (1 + r) * (1 + 1e-12) && mesh_encloses(out, original);
   for (auto v : out.vertices()) ok = ok && constraints.satisfied_by(out.point(v));
   if (!ok) {
     out = convex_hull_mesh(original);
     st.collapses = st.moves = 0;
+  }
+  if (options.fatten_flat_facets && n > 0) {
+    // Last, so that no collapse or move undoes it; it spends ~1e-9 of the volume, so the
+    // loop above left that much of the budget.
+    FlatFacetOptions fo;
+    fo.max_volume = v0 * (1 + r) * (1 + 1e-12);
+    out = fatten_flat_facets(out, constraints, fo, &st.flat);
   }
   if (stats) {
     st.faces_before = faces0;
@@ -172,7 +172,19 @@ std::vector<ShellConstraints> neighbour_constraints(const std::vector<Mesh>& she
       Separator si = best_face_separator(shells[i], pts[j]), sj = best_face_separator(shells[j], pts[i]);
       std::size_t owner = i, other = j;
       if (!si.found && !sj.found) {
-        if (unseparated) unseparated->push_back({i, j});
+        // No face plane separates them (an edge-edge contact, or a shared cut face rounded
+        // differently on the two sides): an exact plane from the separating LP.
+        Eigen::Vector3d ci = Eigen::Vector3d::Zero(), cj = Eigen::Vector3d::Zero();
+        for (const Point3& p : pts[i]) ci += vec(p);
+        for (const Point3& p : pts[j]) cj += vec(p);
+        const Eigen::Vector3d n0 = cj / double(pts[j].size()) - ci / double(pts[i].size());
+        const auto plane = n0.norm() > 0 ? separating_plane_exact(pts[i], pts[j], n0) : std::nullopt;
+        if (plane) {
+          out[i].exact_planes.push_back(*plane);
+          out[j].exact_planes.push_back(plane->opposite());
+        } else if (unseparated) {
+          unseparated->push_back({i, j});
+        }
         continue;
       }
       if (!si.found || (sj.found && (sj.gap > si.gap || (sj.gap == si.gap && sj.contact > si.contact)))) {

@@ -88,6 +88,14 @@ void add_constraint_rows(const ShellConstraints& c, const Frame& f, double margi
     rows.push_back({n, (p.offset / len - n.dot(f.origin)) / f.scale - margin});
   }
   for (const auto& t : c.face_planes) add_below_row(t[0], t[1], t[2], f, margin, rows);
+  for (const auto& h : c.exact_planes) {
+    // Rounded rows: the margin, and the exact re-check of every answer, cover the rounding.
+    const Eigen::Vector3d nn(CGAL::to_double(h.a()), CGAL::to_double(h.b()), CGAL::to_double(h.c()));
+    const double len = nn.norm();
+    if (!(len > 0)) continue;
+    const Eigen::Vector3d n = nn / len;
+    rows.push_back({n, (-CGAL::to_double(h.d()) / len - n.dot(f.origin)) / f.scale - margin});
+  }
 }
 
 void add_below_row(const Point3& p, const Point3& q, const Point3& r, const Frame& f, double margin,
@@ -153,6 +161,16 @@ double volume_change(const Mesh& m, const Star& s, const Point3& w) {
   return d;
 }
 
+bool mesh_encloses(const Mesh& hull, const std::vector<Point3>& points) {
+  for (F f : hull.faces()) {
+    const H h = hull.halfedge(f);
+    const Point3 &a = hull.point(hull.source(h)), &b = hull.point(hull.target(h)), &c = hull.point(hull.target(hull.next(h)));
+    for (const Point3& p : points)
+      if (CGAL::orientation(a, b, c, p) == CGAL::POSITIVE) return false;
+  }
+  return true;
+}
+
 double mesh_volume(const Mesh& m) {
   if (m.number_of_vertices() == 0) return 0;
   const Eigen::Vector3d o = vec(m.point(*m.vertices().begin()));
@@ -184,6 +202,8 @@ bool ShellConstraints::satisfied_by(const Point3& x) const {
   }
   for (const auto& t : face_planes)
     if (CGAL::orientation(t[0], t[1], t[2], x) == CGAL::POSITIVE) return false;
+  for (const auto& h : exact_planes)
+    if (h.oriented_side(Epeck::Point_3(x.x(), x.y(), x.z())) == CGAL::ON_POSITIVE_SIDE) return false;
   return true;
 }
 

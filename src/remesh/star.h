@@ -59,6 +59,9 @@ bool replacement_is_valid(const Mesh& mesh, const Star& star, const Point3& w, c
 /// Volume change (floating point) of replacing the star by the cone from w.
 double volume_change(const Mesh& mesh, const Star& star, const Point3& w);
 
+/// Every point on or below every face plane of the convex mesh `hull` (exact).
+bool mesh_encloses(const Mesh& hull, const std::vector<Point3>& points);
+
 /// Signed volume of a closed triangle mesh (floating point).
 double mesh_volume(const Mesh& mesh);
 

@@ -1,0 +1,362 @@
+// Fat triangulations of nearly flat facets by tiny domes (see dcshell/flat_facets.h).
+#include "dcshell/flat_facets.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <map>
+#include <numeric>
+#include <vector>
+
+#include "dcshell/convex_hull.h"
+#include "dcshell/fatness.h"
+#include "remesh/star.h"
+
+namespace dcshell {
+namespace {
+
+using remesh_detail::F;
+using remesh_detail::H;
+using remesh_detail::V;
+using remesh_detail::vec;
+using Vec = Eigen::Vector3d;
+
+// Faces joined across edges that are flat within the angle; groups numbered by their first face.
+struct Groups {
+  std::vector<int> of_face;
+  std::vector<std::vector<F>> faces;
+  std::vector<Vec> normal;  // unit, area-weighted
+  std::vector<double> area;
+};
+
+Vec area_vector(const Mesh& m, F f) {
+  const H h = m.halfedge(f);
+  const Vec a = vec(m.point(m.source(h))), b = vec(m.point(m.target(h))), c = vec(m.point(m.target(m.next(h))));
+  return 0.5 * (b - a).cross(c - a);
+}
+
+Groups flat_groups(const Mesh& m, double flat_angle) {
+  const std::size_t nf = m.number_of_faces();
+  std::vector<Vec> av(nf);
+  for (F f : m.faces()) av[f.idx()] = area_vector(m, f);
+  std::vector<std::size_t> parent(nf);
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](std::size_t x) {
+    while (parent[x] != x) x = parent[x] = parent[parent[x]];
+    return x;
+  };
+  for (auto e : m.edges()) {
+    const H h = m.halfedge(e);
+    const std::size_t a = m.face(h).idx(), b = m.face(m.opposite(h)).idx();
+    const double angle = std::atan2(av[a].cross(av[b]).norm(), av[a].dot(av[b]));
+    if (angle < flat_angle) {
+      const std::size_t ra = find(a), rb = find(b);
+      parent[std::max(ra, rb)] = std::min(ra, rb);
+    }
+  }
+  Groups g;
+  g.of_face.assign(nf, -1);
+  std::map<std::size_t, int> id;
+  for (F f : m.faces()) {
+    const std::size_t r = find(f.idx());
+    auto it = id.emplace(r, int(g.faces.size())).first;
+    if (it->second == int(g.faces.size())) {
+      g.faces.emplace_back();
+      g.normal.push_back(Vec::Zero());
+      g.area.push_back(0);
+    }
+    const int k = it->second;
+    g.of_face[f.idx()] = k;
+    g.faces[k].push_back(f);
+    g.normal[k] += av[f.idx()];
+    g.area[k] += av[f.idx()].norm();
+  }
+  for (auto& n : g.normal) n.normalize();
+  return g;
+}
+
+// The facet's corners in boundary order (counter-clockwise seen from outside), or empty when the
+// facet is not a disk whose every vertex is on its boundary.
+std::vector<V> boundary_loop(const Mesh& m, const Groups& g, int k) {
+  std::map<V, H> from;  // boundary halfedge by its source
+  std::vector<V> all;
+  for (F f : g.faces[k]) {
+    H h = m.halfedge(f);
+    for (int i = 0; i < 3; ++i, h = m.next(h)) {
+      all.push_back(m.source(h));
+      if (g.of_face[m.face(m.opposite(h)).idx()] == k) continue;
+      if (!from.emplace(m.source(h), h).second) return {};  // pinched
+    }
+  }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  if (from.empty() || all.size() != from.size() || g.faces[k].size() + 2 != from.size()) return {};
+  std::vector<V> loop;
+  H h = from.begin()->second;
+  do {
+    loop.push_back(m.source(h));
+    auto it = from.find(m.target(h));
+    if (it == from.end()) return {};
+    h = it->second;
+  } while (m.source(h) != loop.front() && loop.size() <= from.size());
+  if (loop.size() != from.size()) return {};
+  return loop;
+}
+
+// Fattest triangulation of a convex polygon (maximum sum of area x fatness) by dynamic
+// programming over its diagonals; returns split[i][j], the apex of the triangle on (i, j), or an
+// empty table when no triangulation avoids degenerate triangles.
+struct Triangulation {
+  std::vector<int> split;  // m x m
+  double score = -1;
+  int m = 0;
+  int apex(int i, int j) const { return split[std::size_t(i) * std::size_t(m) + std::size_t(j)]; }
+};
+
+Triangulation fattest_triangulation(const std::vector<Vec>& p, const std::vector<Eigen::Vector2d>& q, double min_area) {
+  const int m = int(p.size());
+  Triangulation t;
+  t.m = m;
+  t.split.assign(std::size_t(m) * std::size_t(m), -1);
+  const double ninf = -std::numeric_limits<double>::infinity();
+  std::vector<double> best(std::size_t(m) * std::size_t(m), ninf);
+  auto at = [m](int i, int j) { return std::size_t(i) * std::size_t(m) + std::size_t(j); };
+  for (int i = 0; i + 1 < m; ++i) best[at(i, i + 1)] = 0;
+  for (int len = 2; len < m; ++len)
+    for (int i = 0; i + len < m; ++i) {
+      const int j = i + len;
+      for (int k = i + 1; k < j; ++k) {
+        const double a = best[at(i, k)], b = best[at(k, j)];
+        if (a == ninf || b == ninf) continue;
+        const Eigen::Vector2d u = q[k] - q[i], v = q[j] - q[i];
+        if (0.5 * (u.x() * v.y() - u.y() * v.x()) <= min_area) continue;  // degenerate or reflex
+        const double area = 0.5 * (p[k] - p[i]).cross(p[j] - p[i]).norm();
+        const double s = a + b + area * triangle_fatness({p[i].x(), p[i].y(), p[i].z()}, {p[k].x(), p[k].y(), p[k].z()},
+                                                         {p[j].x(), p[j].y(), p[j].z()});
+        if (s > best[at(i, j)]) best[at(i, j)] = s, t.split[at(i, j)] = k;
+      }
+    }
+  if (best[at(0, m - 1)] == ninf) return {};
+  t.score = best[at(0, m - 1)];
+  return t;
+}
+
+// Heights over the polygon whose lower hull is the triangulation: a convex piecewise-linear
+// function. In a convex polygon the line through a diagonal meets the polygon only in that
+// diagonal, so max(0, distance to the diagonal's line) folds along the diagonal and nowhere else;
+// a weighted sum of these over the triangulation's diagonals folds exactly along them. Returns heights scaled to [0, 1] and the
+// weakest fold relative to their range: a dome of depth D survives noise e in the corners' heights
+// when 2 e < margin * D.
+std::vector<double> dome_heights(const Triangulation& t, const std::vector<Eigen::Vector2d>& q, double* margin) {
+  const int m = t.m;
+  std::vector<double> d(std::size_t(m), 0.0);
+  struct Item { int i, j, apex; };  // sub-polygon i..j whose edge (i, j) has `apex` across it
+  std::vector<Item> stack;
+  const int k0 = t.apex(0, m - 1);
+  if (k0 >= 2) stack.push_back({0, k0, m - 1});
+  if (m - 1 - k0 >= 2) stack.push_back({k0, m - 1, 0});
+  auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
+  std::vector<double> folds;  // strength of each fold per unit of height
+  while (!stack.empty()) {
+    const Item it = stack.back();
+    stack.pop_back();
+    const int k = t.apex(it.i, it.j);
+    const Eigen::Vector2d a = q[it.i], b = q[it.j], u = (b - a).normalized();
+    const double dk = cross(u, q[k] - a), da = cross(u, q[it.apex] - a);  // opposite sides of the diagonal
+    // The hull's orientation test on the four corners sees the fold's volume |ij| dk dl / 6 (per
+    // unit height) against noise e moving it by at most e |ij| (dk + dl) / 3: its strength is
+    // dk dl / (dk + dl). Weighting each fold by 1 / strength makes them all equally robust, which
+    // needs the least depth.
+    const double ak = std::abs(dk), al = std::abs(da);
+    const double strength = ak + al > 0 ? ak * al / (ak + al) : 0.0;
+    if (!(strength > 0)) {
+      *margin = 0;
+      return d;
+    }
+    const double sign = dk > 0 ? 1 : -1;
+    for (int v = 0; v < m; ++v) d[std::size_t(v)] += std::max(0.0, sign * cross(u, q[v] - a)) / strength;
+    folds.push_back(1.0);
+    if (k - it.i >= 2) stack.push_back({it.i, k, it.j});
+    if (it.j - k >= 2) stack.push_back({k, it.j, it.i});
+  }
+  const auto mm = std::minmax_element(d.begin(), d.end());
+  const double lo = *mm.first, range = *mm.second - lo;  // values: d changes below
+  *margin = range > 0 ? std::numeric_limits<double>::infinity() : 0.0;
+  for (double strength : folds) *margin = std::min(*margin, strength / range);
+  for (double& h : d) h = range > 0 ? (h - lo) / range : 0.0;
+  return d;
+}
+
+// Direction in which a corner of facet k moves when the facet's surface rises by one unit along
+// w (= ±normal): along w, but within the plane of every other facet being domed that the corner
+// lies on (that facet's heights are measured from its plane, so its dome stays as planned), and,
+// moving outward, never into a neighbouring face's halfspace (which would leave the corner's old
+// place outside the new hull). Any sideways part is kept small: it shifts the corner within the
+// facet, which may turn a nearly straight boundary corner reflex.
+Vec move_direction(const Mesh& m, const Groups& g, const std::vector<char>& domed, int k, V v, const Vec& w,
+                   bool outward) {
+  std::vector<Vec> basis;  // orthonormal, spanning the normals to stay perpendicular to
+  auto keep_off = [&](const Vec& a) {
+    Vec b = a;
+    for (const Vec& e : basis) b -= b.dot(e) * e;
+    if (b.norm() > 1e-3) basis.push_back(b.normalized());
+  };
+  std::vector<int> around;
+  for (F f : CGAL::faces_around_target(m.halfedge(v), m))
+    if (f != Mesh::null_face() && g.of_face[f.idx()] != k) around.push_back(g.of_face[f.idx()]);
+  std::sort(around.begin(), around.end());
+  around.erase(std::unique(around.begin(), around.end()), around.end());
+  for (int o : around)
+    if (domed[std::size_t(o)]) keep_off(g.normal[std::size_t(o)]);
+  auto project = [&](Vec u) {
+    for (const Vec& e : basis) u -= u.dot(e) * e;
+    return u;
+  };
+  Vec u = project(w);
+  if (outward)
+    for (int o : around)
+      if (u.dot(g.normal[std::size_t(o)]) < 0) {
+        keep_off(g.normal[std::size_t(o)]);
+        u = project(w);
+      }
+  if (!(u.dot(w) > 0.2)) return Vec::Zero();  // no good direction: the caller gives up this facet
+  return u / u.dot(w);  // unit rise along w
+}
+
+double ulp_noise(const std::vector<Vec>& p) {
+  double big = 0;
+  for (const Vec& x : p) big = std::max(big, x.cwiseAbs().maxCoeff());
+  return 8 * big * std::numeric_limits<double>::epsilon();
+}
+
+// What doming one facet takes: its corners in order, its normal, heights in [0, 1], depth.
+struct Plan {
+  int k = -1;
+  std::vector<V> loop;
+  std::vector<double> h;
+  double depth = 0;
+};
+
+// The plan for facet k, or none when it is not a disk of boundary corners, is not flat enough,
+// would not get fatter, or its dome would have to be deep to beat the rounding noise.
+bool plan_facet(const Mesh& mesh, const Groups& g, int k, const FlatFacetOptions& options, Plan& plan) {
+  if (g.faces[k].size() < 2) return false;
+  plan.k = k;
+  plan.loop = boundary_loop(mesh, g, k);
+  if (plan.loop.size() < 4) return false;
+  std::vector<Vec> p;
+  for (V v : plan.loop) p.push_back(vec(mesh.point(v)));
+  const Vec n = g.normal[k];
+  const Vec c = std::accumulate(p.begin(), p.end(), Vec(Vec::Zero())) / double(p.size());
+  const Vec e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  std::vector<Eigen::Vector2d> q;
+  double dev = 0, diam = 0;
+  for (const Vec& x : p) {
+    q.emplace_back((x - c).dot(e1), (x - c).dot(e2));
+    dev = std::max(dev, std::abs((x - c).dot(n)));
+  }
+  for (const Vec& x : p)
+    for (const Vec& y : p) diam = std::max(diam, (x - y).norm());
+  if (!(diam > 0) || dev > 1e-6 * diam) return false;
+  const Triangulation t = fattest_triangulation(p, q, 1e-10 * diam * diam);
+  if (t.score < 0) return false;
+  double current = 0;
+  for (F f : g.faces[k]) {
+    const H h = mesh.halfedge(f);
+    const Point3 &a = mesh.point(mesh.source(h)), &b = mesh.point(mesh.target(h)), &cc = mesh.point(mesh.target(mesh.next(h)));
+    current += std::sqrt(CGAL::to_double(CGAL::squared_area(a, b, cc))) * triangle_fatness(a, b, cc);
+  }
+  if (!(t.score > current * (1 + 1e-6))) return false;
+  double margin = 0;
+  plan.h = dome_heights(t, q, &margin);
+  // The dome must rise above the facet's own unevenness and the coordinates' rounding.
+  const double noise = dev + ulp_noise(p);
+  plan.depth = std::max(options.depth * diam, 8 * noise / std::max(margin, 1e-300));
+  return margin > 0 && plan.depth <= 1e-6 * diam;
+}
+
+}  // namespace
+
+Mesh fatten_flat_facets(const Mesh& mesh, const ShellConstraints& constraints, const FlatFacetOptions& options,
+                        FlatFacetStats* stats) {
+  FlatFacetStats st;
+  st.fatness_before = st.fatness_after = weighted_fatness(mesh);
+  if (stats) *stats = st;
+  if (mesh.is_empty() || mesh.has_garbage()) return mesh;
+  const Groups g = flat_groups(mesh, options.flat_angle);
+  std::vector<Plan> plans;
+  std::vector<char> domed(g.faces.size(), 0);
+  for (int k = 0; k < int(g.faces.size()); ++k) {
+    Plan plan;
+    st.facets += g.faces[k].size() >= 2;
+    if (!plan_facet(mesh, g, k, options, plan)) continue;
+    domed[std::size_t(k)] = 1;
+    plans.push_back(std::move(plan));
+  }
+  std::vector<Point3> pts = mesh_points(mesh);  // moved in place, by vertex index
+  std::vector<char> sank(pts.size(), 0);
+  for (const Plan& plan : plans) {
+    // Outward when the constraints allow it (nothing is given up), else inward.
+    for (int side : {+1, -1}) {
+      if (side < 0 && !options.allow_inward) break;
+      const Vec w = side * g.normal[std::size_t(plan.k)];
+      std::vector<Point3> moved;
+      bool ok = true;
+      for (std::size_t i = 0; i < plan.loop.size() && ok; ++i) {
+        // Outward a concave cap, inward a convex dent: either way the hull's faces there are the
+        // triangulation (the heights are convex over it).
+        const double rise = plan.depth * (side > 0 ? 1 - plan.h[i] : plan.h[i]);
+        const Vec u = move_direction(mesh, g, domed, plan.k, plan.loop[i], w, side > 0);
+        // Added to where an earlier facet may have moved this corner (within this facet's plane).
+        const Vec x = vec(pts[plan.loop[i].idx()]) + rise * u;
+        moved.emplace_back(x.x(), x.y(), x.z());
+        ok = u.squaredNorm() > 0 && constraints.satisfied_by(moved.back());
+      }
+      if (!ok) continue;
+      for (std::size_t i = 0; i < plan.loop.size(); ++i) {
+        const V v = plan.loop[i];
+        if (side < 0) {
+          sank[v.idx()] = 1;
+          st.max_inward = std::max(st.max_inward, (vec(moved[i]) - vec(mesh.point(v))).norm());
+        }
+        pts[v.idx()] = moved[i];
+      }
+      ++(side > 0 ? st.outward : st.inward);
+      break;
+    }
+  }
+  if (st.outward + st.inward == 0) return mesh;
+  // Accept only a hull that kept every vertex, encloses every vertex that did not sink, fits the
+  // volume bound and is fatter. A corner moved within a neighbouring face's plane may leave its
+  // old place a rounding unit outside: such corners are pushed out a few units more.
+  std::vector<Point3> keep;
+  std::vector<V> keep_v;
+  for (V v : mesh.vertices())
+    if (!sank[v.idx()]) keep.push_back(mesh.point(v)), keep_v.push_back(v);
+  Mesh out;
+  for (int round = 0;; ++round) {
+    out = convex_hull_mesh(pts);
+    if (out.number_of_vertices() != mesh.number_of_vertices()) return mesh;
+    std::vector<V> outside;
+    for (std::size_t i = 0; i < keep.size(); ++i)
+      if (!remesh_detail::mesh_encloses(out, {keep[i]})) outside.push_back(keep_v[i]);
+    if (outside.empty()) break;
+    if (round == 8) return mesh;
+    for (V v : outside) {
+      Vec normal = Vec::Zero();
+      for (F f : CGAL::faces_around_target(mesh.halfedge(v), mesh)) normal += g.normal[std::size_t(g.of_face[f.idx()])];
+      const Vec x = vec(pts[v.idx()]) + std::ldexp(ulp_noise({vec(pts[v.idx()])}), round) * normal.normalized();
+      pts[v.idx()] = Point3(x.x(), x.y(), x.z());
+      if (!constraints.satisfied_by(pts[v.idx()])) return mesh;
+    }
+  }
+  if (options.max_volume > 0 && remesh_detail::mesh_volume(out) > options.max_volume) return mesh;
+  const double fat = weighted_fatness(out);
+  if (!(fat > st.fatness_before)) return mesh;
+  st.fatness_after = fat;
+  if (stats) *stats = st;
+  return out;
+}
+
+}  // namespace dcshell
