@@ -480,6 +480,14 @@ GaRun run_ga(const ShellGraph& g, const SearchGraph& sg, const UnfoldOptions& op
       next.push_back(std::move(child));
     }
     std::stable_sort(next.begin(), next.end(), by_score);
+    // Memetic step: the best new child is polished by the local search (a short one).
+    for (std::size_t i = 2; i < next.size(); ++i) {
+      if (next[i].metrics.overlapping_pairs != 0) break;
+      if (next[i].folded == next[0].folded || next[i].folded == next[1].folded) continue;
+      ls.improve(next[i], std::max(1, (evaluations - ls_reserve - ev.evaluations) / 8), ls_work / 20);
+      std::stable_sort(next.begin(), next.end(), by_score);
+      break;
+    }
     pop = std::move(next);
     run.best_score_per_generation.push_back(pop.front().score);
     stale = ev.evaluations == before ? stale + 1 : 0;
