@@ -7,7 +7,7 @@
 // (tables + summary) to --out (default: stdout).
 //
 // usage: bench_unfold [--data DIR] [--shells DIR] [--out FILE] [--repeat N] [--max-faces N]
-//                     [--only NAME,...] [--no-ga]
+//                     [--only NAME,...] [--no-ga] [--issue69] [--configs LABEL,...] [--ga-evaluations N]
 #include <boost/program_options.hpp>
 
 #include <algorithm>
@@ -26,6 +26,7 @@
 #include "dcshell/read_mesh.h"
 #include "dcshell/unfold.h"
 #include "dcshell/unfold_ga.h"
+#include "unfold/unfold_internal.h"
 
 namespace fs = std::filesystem;
 namespace po = boost::program_options;
@@ -131,12 +132,18 @@ int main(int argc, char** argv) {
   std::string data = "../shared/data", out, shells_dir, only;
   int repeat = 3;
   int max_faces = 1 << 30;
+  int ga_evaluations = 0;
+  std::string config_list;
   po::options_description opts("bench_unfold options");
   opts.add_options()("help,h", "help")("data", po::value(&data), "shared data directory")(
       "out", po::value(&out), "Markdown report file (default stdout)")("repeat", po::value(&repeat), "runs per timing (median)")(
       "max-faces", po::value(&max_faces), "skip larger inputs")("no-ga", "skip the genetic search")(
       "only", po::value(&only), "comma-separated input names (file stems) to run; default all")(
-      "shells", po::value(&shells_dir), "directory of DC-shell sets DIR/<Model>/shell_*.obj (per-model totals)");
+      "shells", po::value(&shells_dir), "directory of DC-shell sets DIR/<Model>/shell_*.obj (per-model totals)")(
+      "issue69", "only the issue's 69 inputs (convex models, hulls of Bulbasaur, Squirtle, Cow parts)")(
+      "configs", po::value(&config_list),
+      "comma-separated columns to run (steepest,flat,min-perimeter,random,best/hull,best/cut,ga/hull,ga/cut); default all")(
+      "ga-evaluations", po::value(&ga_evaluations), "GA evaluation budget (0 = automatic)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (!fs::is_directory(data)) {
@@ -182,19 +189,26 @@ int main(int argc, char** argv) {
                                  {"random", UnfoldHeuristic::random, UnfoldObjective::hull_area},
                                  {"best/hull", UnfoldHeuristic::best, UnfoldObjective::hull_area},
                                  {"best/cut", UnfoldHeuristic::best, UnfoldObjective::cut_length}};
-  const bool ga = !vm.count("no-ga");
-  if (ga) {
+  if (!vm.count("no-ga")) {
     configs.push_back({"ga/hull", UnfoldHeuristic::ga, UnfoldObjective::hull_area});
     configs.push_back({"ga/cut", UnfoldHeuristic::ga, UnfoldObjective::cut_length});
   }
-
-  auto selected = [&](const std::string& name) {
-    if (only.empty()) return true;
-    std::istringstream is(only);
+  auto listed = [](const std::string& list, const std::string& name) {
+    std::istringstream is(list);
     for (std::string item; std::getline(is, item, ',');)
       if (item == name) return true;
     return false;
   };
+  if (!config_list.empty())
+    configs.erase(std::remove_if(configs.begin(), configs.end(), [&](const Config& c) { return !listed(config_list, c.label); }),
+                  configs.end());
+  auto has = [&](const std::string& label) {
+    return std::any_of(configs.begin(), configs.end(), [&](const Config& c) { return c.label == label; });
+  };
+  const bool ga_hull = has("ga/hull"), ga_cut = has("ga/cut");
+  const bool issue69 = vm.count("issue69") > 0;
+
+  auto selected = [&](const std::string& name) { return only.empty() || listed(only, name); };
   std::ostringstream table, summary;
   table << "| set | input | faces | facets |";
   for (auto& c : configs) table << " " << c.label << " |";
@@ -203,12 +217,17 @@ int main(int argc, char** argv) {
   table << "\n";
 
   std::map<std::string, int> ok_count, ok_count69;
-  std::map<std::string, std::vector<double>> hull_gain, cut_gain;  // GA vs first / vs best heuristic
+  // GA gains vs the first net / vs the best heuristic, on all inputs and on the 69 ("/69").
+  std::map<std::string, std::vector<double>> hull_gain, cut_gain, ga_seconds;
+  std::vector<double> mst_gain69;  // 1 - (minimum-length cut tree, overlaps ignored) / first net
+  std::vector<double> area_gain69;  // 1 - surface area / first net's hull: no net's hull is smaller
+  int target69 = 0, mst_reached69 = 0;
   int n69 = 0, total = 0;
   for (auto& in : inputs) {
     int nf = static_cast<int>(in.mesh.number_of_faces());
     if (nf > max_faces || !selected(in.name)) continue;
     bool in69 = in.set == "convex" || in.set == "hull:Bulbasaur" || in.set == "hull:Squirtle" || in.set == "hull:Cow";
+    if (issue69 && !in69) continue;
     n69 += in69;
     std::cerr << in.set << " " << in.name << " (" << nf << " faces)\n";
     std::size_t row_start = table.str().size();
@@ -221,8 +240,12 @@ int main(int argc, char** argv) {
       // Nets only: the folding check is timed with the DC-shells below.
       o.fold_candidates = 0;
       int rep = c.h == UnfoldHeuristic::ga ? 1 : repeat;
-      Run r = timed(rep, [&](UnfoldStats* st) { return unfold_convex_mesh(in.mesh, o, st); });
-      if (c.label == "steepest") table << " " << r.stats.facets << " |";
+      GaOptions gao;
+      gao.evaluations = ga_evaluations;
+      Run r = timed(rep, [&](UnfoldStats* st) {
+        return c.h == UnfoldHeuristic::ga ? unfold_ga(in.mesh, o, gao, st) : unfold_convex_mesh(in.mesh, o, st);
+      });
+      if (&c == &configs.front()) table << " " << r.stats.facets << " |";
       bool okk = r.stats.result.overlapping_pairs == 0;
       ok_count[c.label] += okk;
       if (in69) ok_count69[c.label] += okk;
@@ -233,14 +256,44 @@ int main(int argc, char** argv) {
     ++total;
     table << "\n";
     std::cerr << table.str().substr(row_start) << std::flush;  // rows as they come, for long runs
-    if (ga) {
+    double hg = 0, cg = 0;
+    auto add = [&](std::map<std::string, std::vector<double>>& m, const std::string& k, double v) {
+      m[k].push_back(v);
+      if (in69) m[k + " (69)"].push_back(v);
+    };
+    if (ga_hull) {
       auto& gh = runs["ga/hull"].stats;
-      auto& gc = runs["ga/cut"].stats;
-      hull_gain["vs first"].push_back(1 - gh.result.hull_area / gh.first.hull_area);
-      hull_gain["vs best heuristic"].push_back(1 - gh.result.hull_area / runs["best/hull"].stats.result.hull_area);
-      cut_gain["vs first"].push_back(1 - gc.result.cut_length / gc.first.cut_length);
-      cut_gain["vs best heuristic"].push_back(1 - gc.result.cut_length / runs["best/cut"].stats.result.cut_length);
+      hg = 1 - gh.result.hull_area / gh.first.hull_area;
+      add(hull_gain, "vs first", hg);
+      if (has("best/hull")) add(hull_gain, "vs best heuristic", 1 - gh.result.hull_area / runs["best/hull"].stats.result.hull_area);
+      add(ga_seconds, "ga/hull", runs["ga/hull"].seconds);
+      if (in69) {
+        double area = 0;
+        for (auto f : in.mesh.faces()) {
+          std::vector<Point3> p;
+          for (auto v : in.mesh.vertices_around_face(in.mesh.halfedge(f))) p.push_back(in.mesh.point(v));
+          for (std::size_t i = 1; i + 1 < p.size(); ++i) area += std::sqrt(CGAL::to_double(CGAL::squared_area(p[0], p[i], p[i + 1])));
+        }
+        area_gain69.push_back(1 - area / gh.first.hull_area);
+      }
     }
+    if (ga_cut) {
+      auto& gc = runs["ga/cut"].stats;
+      cg = 1 - gc.result.cut_length / gc.first.cut_length;
+      add(cut_gain, "vs first", cg);
+      if (has("best/cut")) add(cut_gain, "vs best heuristic", 1 - gc.result.cut_length / runs["best/cut"].stats.result.cut_length);
+      add(ga_seconds, "ga/cut", runs["ga/cut"].seconds);
+      if (in69) {
+        // The minimum-length cut tree (overlaps ignored) bounds what any cut tree can reach.
+        using namespace unfold_detail;
+        ShellGraph sgr = build_shell_graph(in.mesh, gc.flat_angle);
+        Rng rng(1);
+        double mst = decode(sgr, folded_groups(sgr, min_perimeter_weights(sgr, rng, 0.0)), 0).metrics.cut_length;
+        mst_gain69.push_back(1 - mst / gc.first.cut_length);
+        mst_reached69 += gc.result.cut_length <= mst * (1 + 1e-6);  // rounding of equal lengths
+      }
+    }
+    if (in69 && (hg >= 0.4 || cg >= 0.5)) ++target69;
   }
 
   summary << "## Summary\n\n";
@@ -248,7 +301,7 @@ int main(int argc, char** argv) {
           << " inputs (34 convex models + hulls of Bulbasaur, Squirtle, Cow parts) / on all " << total << " inputs:\n\n";
   for (auto& c : configs) summary << "- " << c.label << ": " << ok_count69[c.label] << " / " << n69 << "; all: " << ok_count[c.label] << " / " << total << "\n";
   summary << "\n" << shells_report(shells_dir, repeat);
-  if (ga) {
+  if (ga_hull || ga_cut) {
     auto stats = [](const std::vector<double>& v) {
       std::ostringstream os;
       double mean = 0;
@@ -263,6 +316,19 @@ int main(int argc, char** argv) {
     summary << "\nGA (fitness = normalised hull area or cut length; seeded with the heuristics' nets):\n\n";
     for (auto& [k, v] : hull_gain) summary << "- hull area reduction " << k << ": " << stats(v) << "\n";
     for (auto& [k, v] : cut_gain) summary << "- cut length reduction " << k << ": " << stats(v) << "\n";
+    if (!area_gain69.empty())
+      summary << "- ceiling of the hull area reduction (hull >= net area = surface area, vs first; 69): " << stats(area_gain69) << "\n";
+    if (!mst_gain69.empty())
+      summary << "- ceiling of the cut length reduction (minimum-length cut tree, overlaps ignored, vs first; 69): "
+              << stats(mst_gain69) << "; GA cut-length nets at that minimum: " << mst_reached69 << " of " << mst_gain69.size()
+              << "\n";
+    if (ga_hull && ga_cut) summary << "- target \"hull area >= 40% or cut length >= 50% vs first\" met on " << target69 << " of " << n69 << " of the 69\n";
+    for (auto& [k, v] : ga_seconds) {
+      auto w = v;
+      std::sort(w.begin(), w.end());
+      summary << "- time " << k << ": median " << fmt(median(w), 3) << " s, max " << fmt(w.empty() ? 0 : w.back(), 3) << " s (" << w.size()
+              << " inputs)\n";
+    }
   }
   summary << "\nCells: median time, overlap-free, cut length, net hull area (model units).\n\n";
 

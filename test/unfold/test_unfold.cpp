@@ -5,6 +5,7 @@
 #include <map>
 #include <sstream>
 
+#include "dcshell/convex_hull.h"
 #include "dcshell/error.h"
 #include "dcshell/fold_check.h"
 #include "dcshell/net_overlap.h"
@@ -202,6 +203,103 @@ BOOST_AUTO_TEST_CASE(ga_is_reproducible_and_improves_on_the_first_net) {
   BOOST_TEST(s1.result.overlapping_pairs == 0);
   BOOST_TEST(s1.result.hull_area <= s1.first.hull_area);
   check_good_net(a, "ga icosahedron");
+}
+
+namespace {
+
+// A 1 x 2 x 3 box as 12 triangles: its minimum-length cut tree is 4 x 1 + 2 x 2 + 1 x 3 = 11.
+Mesh box_123() {
+  std::vector<std::array<double, 3>> v = {{0, 0, 0}, {1, 0, 0}, {1, 2, 0}, {0, 2, 0}, {0, 0, 3}, {1, 0, 3}, {1, 2, 3}, {0, 2, 3}};
+  std::vector<std::vector<int>> quads = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
+  std::vector<std::vector<int>> tris;
+  for (auto& q : quads) tris.push_back({q[0], q[1], q[2]}), tris.push_back({q[0], q[2], q[3]});
+  return make_mesh(v, tris);
+}
+
+// Convex hull of n seeded random points on an ellipsoid (axes 1, 1.6, 2.3): irregular facets.
+Mesh random_hull(int n, std::uint64_t seed) {
+  dcshell::unfold_detail::Rng rng(seed);
+  std::vector<Point3> pts;
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d d = rng.direction();
+    pts.emplace_back(d.x(), 1.6 * d.y(), 2.3 * d.z());
+  }
+  return convex_hull_mesh(pts);
+}
+
+double score_of(const NetMetrics& m, const NetMetrics& first, UnfoldObjective o) {
+  return dcshell::unfold_detail::objective_score(m, first, o);
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(ga_is_never_worse_than_its_seeds_and_reproducible) {
+  std::vector<std::pair<std::string, Mesh>> shapes = {{"dodecahedron", dodecahedron()}, {"box", box_123()},
+                                                      {"hull40", random_hull(40, 11)}, {"hull90", random_hull(90, 5)}};
+  for (auto& [name, mesh] : shapes)
+    for (auto obj : {UnfoldObjective::hull_area, UnfoldObjective::cut_length}) {
+      BOOST_TEST_CONTEXT(name << " " << to_string(obj)) {
+        UnfoldOptions o;
+        o.objective = obj;
+        o.seed = 3;
+        o.fold_candidates = 0;  // compare the searches, not the folding check's choice
+        GaOptions ga;
+        ga.evaluations = 300;
+        UnfoldStats sb, s1, s2;
+        unfold_convex_mesh(mesh, o, &sb);
+        Net a = unfold_ga(mesh, o, ga, &s1), b = unfold_ga(mesh, o, ga, &s2);
+        std::ostringstream oa, ob;
+        write_net_obj(a, oa);
+        write_net_obj(b, ob);
+        BOOST_TEST(oa.str() == ob.str());
+        BOOST_TEST(s1.result.overlapping_pairs == 0);
+        check_good_net(a, name);
+        // Never worse than the default search (its seeds) nor than the first net.
+        BOOST_TEST(score_of(s1.result, sb.first, obj) <= score_of(sb.result, sb.first, obj) + 1e-9);
+        BOOST_TEST(score_of(s1.result, s1.first, obj) <= score_of(s1.first, s1.first, obj) + 1e-9);
+      }
+    }
+}
+
+BOOST_AUTO_TEST_CASE(cut_length_search_reaches_the_minimum_length_cut_tree) {
+  using namespace dcshell::unfold_detail;
+  // best and ga with the cut-length objective: the box's minimum cut tree (11), overlap-free.
+  for (auto h : {UnfoldHeuristic::best, UnfoldHeuristic::ga}) {
+    UnfoldOptions o;
+    o.heuristic = h;
+    o.objective = UnfoldObjective::cut_length;
+    UnfoldStats st;
+    Net net = unfold_convex_mesh(box_123(), o, &st);
+    check_good_net(net, "box " + to_string(h));
+    BOOST_TEST(st.result.cut_length == 11.0, boost::test_tools::tolerance(1e-12));
+  }
+  // The local search alone (run_ga, population 0), started from the first net only: edge
+  // exchanges reach the minimum when no overlap is in the way, and never go below it.
+  for (std::uint64_t seed : {11, 12, 13}) {
+    Mesh m = random_hull(30, seed);
+    ShellGraph g = build_shell_graph(m, 1e-4);
+    SearchGraph sg = make_search_graph(g, 1e-4);
+    UnfoldOptions o;
+    o.objective = UnfoldObjective::cut_length;
+    o.heuristic = UnfoldHeuristic::steepest;
+    o.tries = 1;
+    SearchResult seeds = search_heuristics(g, sg, o, false);
+    BOOST_TEST_REQUIRE(seeds.evaluated.size() == 1u);
+    BOOST_TEST_REQUIRE(seeds.evaluated[0].metrics.overlapping_pairs == 0);
+    Rng rng(1);
+    auto mst_folded = folded_groups(g, min_perimeter_weights(g, rng, 0.0));
+    NetMetrics mst = decode(g, mst_folded, 1).metrics;
+    GaRun run = run_ga(g, sg, o, 1000, 0, seeds);
+    BOOST_TEST(run.best.metrics.overlapping_pairs == 0);
+    BOOST_TEST(run.best.metrics.cut_length >= mst.cut_length * (1 - 1e-12));
+    BOOST_TEST(run.best.metrics.cut_length < seeds.evaluated[0].metrics.cut_length);
+    if (mst.overlapping_pairs == 0)
+      BOOST_TEST(run.best.metrics.cut_length == mst.cut_length, boost::test_tools::tolerance(1e-9));
+    NetMetrics check;
+    Net net = finish_net(g, run.best.genome, &check);
+    BOOST_TEST(check.overlapping_pairs == 0);
+    BOOST_TEST(check.cut_length == run.best.metrics.cut_length, boost::test_tools::tolerance(1e-9));
+  }
 }
 
 BOOST_AUTO_TEST_CASE(non_convex_and_bad_meshes) {
