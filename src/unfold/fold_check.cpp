@@ -1,6 +1,7 @@
 // Continuous folding check along the straight line in configuration space (see fold_check.h and
 // doc/fold_check.md for the argument).
 #include "dcshell/fold_check.h"
+#include "dcshell/net_overlap.h"
 
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/box_intersection_d.h>
@@ -309,6 +310,7 @@ class Checker {
     return std::abs(pc_[joint].angle) * ((w - w.dot(axis_w_u_[joint]) * axis_w_u_[joint]).norm() + pc_[piece].radius);
   }
   PairInfo& info(int p, int q);
+  bool flat_overlap(int p, int q) const;
   void classify(int p, int q, PairInfo& pi);
   double end_window(int p, int q, PairInfo& pi);
   double plane_window(int p, int q, const PairInfo& pi);
@@ -414,6 +416,27 @@ void Checker::classify(int p, int q, PairInfo& pi) {
     if (pc_[a].depth >= pc_[c].depth) pi.up_p.push_back(a), a = pc_[a].parent;
     else pi.up_q.push_back(c), c = pc_[c].parent;
   }
+  if (pi.up_p.size() + pi.up_q.size() == 1) {
+    // Adjacent pieces turn about one exact line l (their hinge). Their planes are distinct while
+    // the turn stays in (0, pi), so they can meet only on l, where nothing moves relative to
+    // either: p(t) and q(t) meet at most where the flat net's pieces meet on l. That holds on
+    // whichever side of l each piece lies; it only needs the flat pieces to overlap nowhere
+    // (a bend of 1e-6 in a nearly straight chain of glued fold edges puts hull corners on the
+    // wrong side of the hinge, which the convex hulls cannot tell from an overlap).
+    const Piece& child = pc_[pi.up_p.empty() ? pi.up_q[0] : pi.up_p[0]];
+    const Vec2 a = child.hinge_a.head<2>(), u = child.hinge_u.head<2>();
+    auto side = [&](int b, double sign) {  // every hull corner of b on the closed side `sign` of l
+      for (const auto& h : pc_[b].hull)
+        if (sign * cross2(u, h - a) < -1e-10 * scale_) return false;
+      return true;
+    };
+    bool apart = (side(p, 1) && side(q, -1)) || (side(p, -1) && side(q, 1));
+    if (std::abs(child.angle) < M_PI - 1e-9 && (apart || !flat_overlap(p, q))) {
+      pi.kind = PairKind::hinge;
+      pi.done = true;
+      return;
+    }
+  }
   const double eps = 1e-10 * scale_;
   const auto &A = pc_[p].corners, &B = pc_[q].corners;
   std::vector<Vec2> fixed_at;
@@ -466,6 +489,27 @@ void Checker::classify(int p, int q, PairInfo& pi) {
     }
   }
   pi.window = end_window(p, q, pi);
+}
+
+// Do the two pieces' faces overlap in the flat net (interiors, exact on the net's doubles)?
+bool Checker::flat_overlap(int p, int q) const {
+  using Box2 = CGAL::Box_intersection_d::Box_with_info_d<double, 2, int>;
+  auto boxes = [&](int b) {
+    std::vector<Box2> out;
+    for (int f : pc_[b].faces) {
+      const auto& c = net_.corners[f];
+      double lo[2] = {std::min({c[0].x(), c[1].x(), c[2].x()}), std::min({c[0].y(), c[1].y(), c[2].y()})};
+      double hi[2] = {std::max({c[0].x(), c[1].x(), c[2].x()}), std::max({c[0].y(), c[1].y(), c[2].y()})};
+      out.emplace_back(lo, hi, f);
+    }
+    return out;
+  };
+  auto bp = boxes(p), bq = boxes(q);
+  bool overlap = false;
+  CGAL::box_intersection_d(bp.begin(), bp.end(), bq.begin(), bq.end(), [&](const Box2& a, const Box2& b) {
+    overlap = overlap || triangle_interiors_overlap(net_.corners[a.info()], net_.corners[b.info()]);
+  });
+  return overlap;
 }
 
 // End window for a pair that touches in the folded shell: the largest s such that the pair is
