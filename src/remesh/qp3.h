@@ -39,6 +39,21 @@ std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, co
 std::optional<Epeck::Plane_3> separating_plane_exact(const std::vector<Point3>& below, const std::vector<Point3>& above,
                                                      const Eigen::Vector3d& n0);
 
+/// While alive, caps how many programs solve_lp3 / solve_qp3 hand to the exact solver on this
+/// thread; past the cap an undecided program is answered "no solution", which only drops that
+/// candidate move (every move is re-checked exactly anyway). Deterministic: the caller's own
+/// sequence of programs decides which ones get the exact solver. Nested budgets restore the outer one.
+class ExactFallbackBudget {
+ public:
+  explicit ExactFallbackBudget(std::size_t solves);
+  ~ExactFallbackBudget();
+  ExactFallbackBudget(const ExactFallbackBudget&) = delete;
+  ExactFallbackBudget& operator=(const ExactFallbackBudget&) = delete;
+
+ private:
+  std::size_t outer_;
+};
+
 /// How many programs were solved, and how many took the exact fallback (process-wide; for benchmarks).
 std::size_t all_solves();
 std::size_t exact_solves();

@@ -26,6 +26,8 @@ constexpr double kSimplifyShare = 1.0;
 // Share of the volume kept back for the flat-facet domes (fatten_flat_facets), which add about
 // 1e-9 of the volume where they bulge outward.
 constexpr double kDomeReserve = 1e-7;
+// At most one exact LP/QP solve per this many faces of the input (see ExactFallbackBudget).
+constexpr std::size_t kFacesPerExactSolve = 8;
 
 std::size_t triangle_count(const Mesh& m) {
   std::size_t n = 0;
@@ -42,7 +44,7 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
     throw InputError("remesh: max volume increase must be a finite number >= 0");
   const ConvexityVerdict verdict = check_convexity(shell);
   if (!verdict.ok()) throw InputError("remesh: shell is not a closed outward convex polyhedron: " + verdict.reason);
-  const std::vector<Point3> original = mesh_points(shell);
+  std::vector<Point3> original = mesh_points(shell);
   for (const Point3& p : original)
     if (!constraints.satisfied_by(p)) throw InputError("remesh: shell does not satisfy its own constraint planes");
 
@@ -53,6 +55,19 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
   const int n = options.iterations;
   const double r = options.max_volume_increase;
   RemeshStats st;
+  // The exact solver (about 1 ms a program) settles what the floating-point certificates cannot,
+  // mostly the thin slabs along cut faces; capped per face so that it cannot dominate the run.
+  const ExactFallbackBudget budget(std::max<std::size_t>(16, faces0 / kFacesPerExactSolve));
+  FlatFacetOptions fo;
+  fo.max_volume = v0 * (1 + r) * (1 - kDomeReserve);
+  if (options.fatten_flat_facets && n > 0) {
+    // Domed first too: a cut face then lies ~1e-9 below its plane instead of a rounding unit,
+    // so collapses along its boundary find room between the two (the progressive hull's new
+    // point must be above the faces it replaces and below the plane). What is enclosed from here
+    // on is the domed shell.
+    m = fatten_flat_facets(m, constraints, fo, &st.flat);
+    original = mesh_points(m);
+  }
   {
     Workspace ws(m);
     SimplifyStats sst;
@@ -91,9 +106,10 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
   if (options.fatten_flat_facets && n > 0) {
     // Last, so that no collapse or move undoes it; it spends ~1e-9 of the volume, so the
     // loop above left that much of the budget.
-    FlatFacetOptions fo;
+    const double first_sink = st.flat.max_inward;
     fo.max_volume = v0 * (1 + r) * (1 + 1e-12);
     out = fatten_flat_facets(out, constraints, fo, &st.flat);
+    st.flat.max_inward += first_sink;  // the two sinks add up at most
   }
   if (stats) {
     st.faces_before = faces0;

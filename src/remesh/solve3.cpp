@@ -6,6 +6,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <limits>
 
 #include "remesh/qp3.h"
 
@@ -161,7 +162,20 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
   return std::nullopt;
 }
 
+// Exact fallbacks left on this thread (see ExactFallbackBudget); unlimited outside a budget.
+thread_local std::size_t exact_left = std::numeric_limits<std::size_t>::max();
+
+bool take_exact() {
+  ++exact_count;
+  if (exact_left == 0) return false;
+  if (exact_left != std::numeric_limits<std::size_t>::max()) --exact_left;
+  return true;
+}
+
 }  // namespace
+
+ExactFallbackBudget::ExactFallbackBudget(std::size_t solves) : outer_(exact_left) { exact_left = std::min(solves, outer_); }
+ExactFallbackBudget::~ExactFallbackBudget() { exact_left = outer_; }
 
 std::size_t exact_solves() { return exact_count.load(); }
 std::size_t all_solves() { return all_count.load(); }
@@ -181,7 +195,7 @@ std::optional<Eigen::Vector3d> solve_lp3(const Eigen::Vector3d& c, const std::ve
   auto r = generate(rows, box_rows(), y, false, c, certified, undecided);
   if (r && r->lpNorm<Eigen::Infinity>() < 0.5 * R) return r;
   if (!r && !undecided) return std::nullopt;
-  ++exact_count;
+  if (!take_exact()) return std::nullopt;
   return solve_lp3_exact(c, rows);
 }
 
@@ -199,7 +213,7 @@ std::optional<Eigen::Vector3d> solve_qp3(const Eigen::Vector3d& t, const std::ve
     if (r && r->lpNorm<Eigen::Infinity>() < 0.5 * kBox) return r;
     if (!r && !undecided) return std::nullopt;
   }
-  ++exact_count;
+  if (!take_exact()) return std::nullopt;
   return solve_qp3_exact(t, rows);
 }
 
