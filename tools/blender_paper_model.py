@@ -29,6 +29,9 @@ def parse_args():
     ap = argparse.ArgumentParser(prog="blender_paper_model.py")
     ap.add_argument("--out", required=True, help="JSON-lines file to append results to")
     ap.add_argument("--no-overlap-check", action="store_true", help="skip our own overlap test")
+    ap.add_argument("--dump-cuts", action="store_true",
+                    help="also record the cut edges (vertex index pairs) and the vertex coordinates, "
+                         "for the edge-by-edge comparison in run_blender_baseline.py --edge-analysis")
     ap.add_argument("meshes", nargs="+")
     return ap.parse_args(argv)
 
@@ -210,6 +213,11 @@ def process(pm, path, args):
                # its brute-force one (the only overlap-related state it keeps; it prints nothing)
                unsafe_geometry_islands=sum(1 for i in islands if not i.has_safe_geometry),
                import_s=t_import, unfold_s=t_unfold)
+    if args.dump_cuts:
+        m = unfolder.mesh.matrix
+        rec["cut_edge_vertices"] = sorted(sorted((e.va.index, e.vb.index)) for e in unfolder.mesh.edges.values()
+                                          if e.main_faces and e.is_main_cut)
+        rec["vertex_coords"] = [list(m @ v.co / scale) for v in unfolder.mesh.data.verts]
     emit(args.out, rec)
     if args.no_overlap_check:
         return

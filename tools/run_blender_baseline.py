@@ -68,19 +68,88 @@ def read_jsonl(jsonl, path):
     return unfold, overlap, timed_out
 
 
-def run_ours(path, objective, out_dir, repeat):
-    """`dcshell unfold` on one mesh; returns its unfold.json shell record and median wall time."""
+def run_ours(path, objective, out_dir, repeat, timeout):
+    """`dcshell unfold` on one mesh; returns its unfold.json shell record (None: bad input or
+    timed out) and the median wall time. The wall time includes the folding check, which
+    unfold.json's unfold_time_s leaves out."""
     walls = []
     for _ in range(repeat):
-        cmd = ["nice", str(ROOT / "build" / "dcshell"), "unfold", "--objective", objective, "--force",
-               "--out", str(out_dir), str(path)]
+        cmd = ["timeout", str(timeout), "nice", str(ROOT / "build" / "dcshell"), "unfold", "--objective", objective,
+               "--force", "--out", str(out_dir), str(path)]
         t0 = time.perf_counter()
         rc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
         walls.append(time.perf_counter() - t0)
+        if rc == 124:
+            return "timeout", walls[-1]
         if rc == 2:
             return None, None
     shell = json.loads((out_dir / "unfold.json").read_text())["shells"][0]
     return shell, statistics.median(walls)
+
+
+def read_obj(path):
+    """Vertices and faces (0-based corner indices) of an OBJ file."""
+    verts, faces = [], []
+    for line in Path(path).read_text().splitlines():
+        t = line.split()
+        if not t:
+            continue
+        if t[0] == "v":
+            verts.append(tuple(float(x) for x in t[1:4]))
+        elif t[0] == "f":
+            faces.append([int(c.split("/")[0]) - 1 for c in t[1:]])
+    return verts, faces
+
+
+def face_normal(verts, f):
+    a, b, c = (verts[i] for i in f[:3])
+    u = [b[k] - a[k] for k in range(3)]
+    v = [c[k] - a[k] for k in range(3)]
+    n = [u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2], u[0] * v[1] - u[1] * v[0]]
+    ln = sum(x * x for x in n) ** 0.5
+    return [x / ln for x in n]
+
+
+def edge_analysis(path, net_obj, blender_rec):
+    """Edge by edge: which mesh edges Blender cuts and which ours cuts (from our net: faces are in
+    shell order, corners in shell order, and corners joined by a fold are one net vertex)."""
+    import math
+    verts, faces = read_obj(path)
+    _, net_faces = read_obj(net_obj)
+    assert len(net_faces) == len(faces), "net faces must be in shell order"
+    sides = {}  # undirected edge -> list of (face, net edge)
+    for k, (f, g) in enumerate(zip(faces, net_faces)):
+        for i in range(len(f)):
+            e = tuple(sorted((f[i], f[(i + 1) % len(f)])))
+            sides.setdefault(e, []).append((k, frozenset((g[i], g[(i + 1) % len(g)]))))
+    ours = {e for e, s in sides.items() if len(s) != 2 or s[0][1] != s[1][1]}
+    # Blender's vertex indices are the file's (one object, no merging): checked on coordinates.
+    bc = blender_rec["vertex_coords"]
+    diag = math.dist([min(v[k] for v in verts) for k in range(3)], [max(v[k] for v in verts) for k in range(3)])
+    assert len(bc) == len(verts) and max(math.dist(a, b) for a, b in zip(bc, verts)) < 1e-5 * diag
+    blender = {tuple(e) for e in blender_rec["cut_edge_vertices"]}
+
+    def length(e):
+        return math.dist(verts[e[0]], verts[e[1]])
+
+    def angle(e):  # dihedral (fold) angle in degrees
+        (f1, _), (f2, _) = sides[e]
+        n1, n2 = face_normal(verts, faces[f1]), face_normal(verts, faces[f2])
+        return math.degrees(math.acos(max(-1.0, min(1.0, sum(a * b for a, b in zip(n1, n2))))))
+
+    def summary(es):
+        if not es:
+            return "0"
+        ls = sorted(length(e) for e in es)
+        ang = sorted(angle(e) for e in es)
+        return (f"{len(es)} edges, length {sum(ls):.4g} (median edge {ls[len(ls) // 2]:.3g}), "
+                f"fold angle median {ang[len(ang) // 2]:.3g} deg")
+
+    all_len = sorted(length(e) for e in sides)
+    return {"blender_cut": summary(blender), "ours_cut": summary(ours),
+            "both": summary(blender & ours), "only_blender": summary(blender - ours),
+            "only_ours": summary(ours - blender),
+            "mesh_edges": f"{len(sides)} edges, median length {all_len[len(all_len) // 2]:.3g}"}
 
 
 def main():
@@ -89,19 +158,47 @@ def main():
     ap.add_argument("--work", type=Path, default=Path("/tmp/blender_baseline"))
     ap.add_argument("--csv", type=Path, default=ROOT / "doc" / "data" / "blender_paper_model.csv")
     ap.add_argument("--timeout", type=int, default=120)
+    ap.add_argument("--ours-timeout", type=int, default=180,
+                    help="limit per `dcshell unfold` run (its folding check is slow on ball_large)")
     ap.add_argument("--repeat", type=int, default=1, help="runs of ours per input (median wall time)")
     ap.add_argument("--only", default="", help="comma-separated input names")
     ap.add_argument("--reuse-blender", action="store_true",
                     help="keep the Blender results already in WORK/blender.jsonl (rerun only missing ones)")
     ap.add_argument("--skip-ours", action="store_true", help="Blender only (e.g. while dcshell builds)")
+    ap.add_argument("--edge-analysis", default="",
+                    help="comma-separated input names: edge-by-edge comparison of the cuts (needs the "
+                         "ours results in WORK from a previous run), printed as Markdown; no CSV")
     ap.add_argument("--no-hull-area", action="store_true", help="skip ours with --objective hull-area")
     args = ap.parse_args()
 
     args.work.mkdir(parents=True, exist_ok=True)
     jsonl = args.work / "blender.jsonl"
+    only = set(filter(None, args.only.split(",")))
+    if args.edge_analysis:
+        wanted = args.edge_analysis.split(",")
+        cuts = args.work / "blender_cuts.jsonl"
+        for set_name, name, path in inputs(args.data, args.work):
+            if name not in wanted:
+                continue
+            rec, _, _ = read_jsonl(cuts, path)
+            if rec is None:
+                subprocess.run(["timeout", str(args.timeout), "nice", "blender", "-b", "--factory-startup",
+                                "--python", str(ROOT / "tools" / "blender_paper_model.py"), "--",
+                                "--no-overlap-check", "--dump-cuts", "--out", str(cuts), str(path)],
+                               stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+                rec, _, _ = read_jsonl(cuts, path)
+            if rec is None or rec["status"] != "ok":
+                print(f"{name}: no Blender result")
+                continue
+            res = edge_analysis(path, args.work / "ours" / "cut-length" / name / "net_000.obj", rec)
+            print(f"**{set_name} {name}** ({res['mesh_edges']}; Blender {rec['islands']} island(s))\n")
+            for k in ("blender_cut", "ours_cut", "both", "only_blender", "only_ours"):
+                print(f"- {k.replace('_', ' ')}: {res[k]}")
+            print()
+        return
+
     if not args.reuse_blender and jsonl.exists():
         jsonl.unlink()
-    only = set(filter(None, args.only.split(",")))
     rows = []
     for set_name, name, path in inputs(args.data, args.work):
         if only and name not in only:
@@ -139,10 +236,12 @@ def main():
         for objective, key in (("cut-length", "ours_cut"), ("hull-area", "ours_hull")):
             if args.skip_ours or (objective == "hull-area" and args.no_hull_area):
                 continue
-            shell, wall = run_ours(path, objective, args.work / "ours" / objective / name, args.repeat)
-            if shell is None:
-                row[key + "_status"] = "bad input"
+            shell, wall = run_ours(path, objective, args.work / "ours" / objective / name, args.repeat,
+                                   args.ours_timeout)
+            if shell is None or shell == "timeout":
+                row[key + "_status"] = "bad input" if shell is None else f"timeout({args.ours_timeout}s)"
                 continue
+            row[key + "_status"] = "ok"
             row.setdefault("faces", shell["faces"])
             row.update({key + "_cut_length": shell["cut_length"], key + "_hull_area": shell["hull_area"],
                         key + "_overlap_free": shell["overlap_free"],
