@@ -19,8 +19,13 @@ namespace dcshell {
 struct FlatFacetOptions {
   /// Neighbouring triangles whose normals differ by less than this (radians) form one facet.
   double flat_angle = 1e-6;
-  /// Depth of the dome relative to the facet's diameter (raised where the facet is less flat).
+  /// Depth of the dome relative to the facet's diameter (raised where the facet is less flat,
+  /// its coordinates large or its triangulation's weakest fold weak) ...
   double depth = 1e-9;
+  /// ... up to this outward (it costs only volume) and max_sink inward (the shell then no longer
+  /// contains its input by that much); a facet that would need more is left as it is.
+  double max_depth = 1e-6;
+  double max_sink = 1e-8;
   /// A facet that cannot bulge outward (it lies on a constraint plane: a cut face, a face
   /// shared with a neighbour) may sink inward by at most the dome depth. Off where the shell must
   /// enclose its input exactly (a part's hull before cutting).

@@ -236,6 +236,7 @@ struct Plan {
   std::vector<V> loop;
   std::vector<double> h;
   double depth = 0;
+  double diam = 0;
 };
 
 // The plan for facet k, or none when it is not a disk of boundary corners, is not flat enough,
@@ -273,7 +274,8 @@ bool plan_facet(const Mesh& mesh, const Groups& g, int k, const FlatFacetOptions
   // The dome must rise above the facet's own unevenness and the coordinates' rounding.
   const double noise = dev + ulp_noise(p);
   plan.depth = std::max(options.depth * diam, 8 * noise / std::max(margin, 1e-300));
-  return margin > 0 && plan.depth <= 1e-6 * diam;
+  plan.diam = diam;
+  return margin > 0 && plan.depth <= options.max_depth * diam;
 }
 
 }  // namespace
@@ -299,7 +301,7 @@ Mesh fatten_flat_facets(const Mesh& mesh, const ShellConstraints& constraints, c
   for (const Plan& plan : plans) {
     // Outward when the constraints allow it (nothing is given up), else inward.
     for (int side : {+1, -1}) {
-      if (side < 0 && !options.allow_inward) break;
+      if (side < 0 && (!options.allow_inward || plan.depth > options.max_sink * plan.diam)) break;
       const Vec w = side * g.normal[std::size_t(plan.k)];
       std::vector<Point3> moved;
       bool ok = true;
