@@ -22,6 +22,8 @@ using remesh_detail::V;
 using remesh_detail::vec;
 using Vec = Eigen::Vector3d;
 
+constexpr std::size_t kMaxCorners = 400;
+
 // Faces joined across edges that are flat within the angle; groups numbered by their first face.
 struct Groups {
   std::vector<int> of_face;
@@ -245,7 +247,8 @@ bool plan_facet(const Mesh& mesh, const Groups& g, int k, const FlatFacetOptions
   if (g.faces[k].size() < 2) return false;
   plan.k = k;
   plan.loop = boundary_loop(mesh, g, k);
-  if (plan.loop.size() < 4) return false;
+  // The dynamic programme is cubic in the corners: a facet of more corners keeps its triangles.
+  if (plan.loop.size() < 4 || plan.loop.size() > kMaxCorners) return false;
   std::vector<Vec> p;
   for (V v : plan.loop) p.push_back(vec(mesh.point(v)));
   const Vec n = g.normal[k];

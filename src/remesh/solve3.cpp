@@ -166,9 +166,9 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
 thread_local std::size_t exact_left = std::numeric_limits<std::size_t>::max();
 
 bool take_exact() {
-  ++exact_count;
   if (exact_left == 0) return false;
   if (exact_left != std::numeric_limits<std::size_t>::max()) --exact_left;
+  ++exact_count;
   return true;
 }
 
