@@ -43,14 +43,19 @@ BEGIN {
 [ $? -eq 0 ] || { cat "$tmp/err"; fail "remesh of a certified pair"; }
 [ -f "$tmp/out/shell_000.obj" ] && [ -f "$tmp/out/shell_001.obj" ] && [ -f "$tmp/out/report.json" ] || fail "outputs"
 "$bin" check -q "$tmp/out/shell_000.obj" "$tmp/out/shell_001.obj" > /dev/null || fail "written shells are not certified"
-for k in faces_before faces_after fatness_before fatness_after volume_increase; do
+for k in faces_before faces_after fatness_before fatness_after volume_increase domed_facets max_sink; do
   grep -q "\"$k\"" "$tmp/out/report.json" || fail "report lacks $k"
 done
 # Fatter, not bigger than allowed, never more faces.
 awk -F'[:,]' '/"faces_before"/ {fb=$2} /"faces_after"/ {if ($2 > fb) bad=1}
   /"fatness_before"/ {b=$2} /"fatness_after"/ {if ($2 <= b) bad=1}
   /"volume_increase"/ {if ($2 > 0.05 + 1e-9) bad=1}
-  END {exit bad}' "$tmp/out/report.json" || fail "report numbers"
+  /"domed_facets"/ {domed += $2} /"max_sink"/ {if ($2 > 1e-7) bad=1}
+  END {if (domed == 0) bad=1; exit bad}' "$tmp/out/report.json" || fail "report numbers"
+# The flat caps and the shared face were domed above; without domes nothing is, nothing sinks.
+"$bin" remesh --no-domes --out "$tmp/nd" "$tmp/left.obj" "$tmp/right.obj" 2> /dev/null || fail "--no-domes"
+awk -F'[:,]' '/"max_sink"/ {if ($2 != 0) bad=1} /"domed_facets"/ {if ($2 != 0) bad=1} END {exit bad}' \
+  "$tmp/nd/report.json" || fail "--no-domes still domed"
 
 # Refuses an existing output, bad options and bad input: exit 2, nothing written.
 "$bin" remesh --out "$tmp/out" "$tmp/left.obj" 2> /dev/null; [ $? -eq 2 ] || fail "existing output dir"
