@@ -279,6 +279,7 @@ struct PairInfo {
   std::vector<int> up_p, up_q;  // pieces whose hinges lie between each piece and the common ancestor
   std::vector<int> fixed;       // shell vertices the two pieces keep in common along the path
   bool shares = false;          // the pieces share a shell vertex (they touch in the folded shell)
+  double safe_until = 0;        // proved disjoint from the state it was last examined at up to here
 };
 
 class Checker {
@@ -665,7 +666,11 @@ FoldCheckResult Checker::run() {
   double t = 0, dt = 1.0 / 16;
   std::vector<double> abs_lever(nb), abs_theta(nb);
   std::vector<std::pair<int, int>> cand;
-  for (res.steps = 0; res.steps < opt_.max_steps; ++res.steps) {
+  // Steps allowed: max_steps, and max_work / pieces when a work budget is given.
+  const long long step_cap =
+      opt_.max_work > 0 ? std::min<long long>(opt_.max_steps, std::max<long long>(1, opt_.max_work / nb)) : opt_.max_steps;
+  int last_p = -1, last_q = -1;
+  for (res.steps = 0; res.steps < step_cap; ++res.steps) {
     place(t);
     double max_lever = 0, max_theta = 0;
     for (int b = 0; b < nb; ++b) {
@@ -692,6 +697,7 @@ FoldCheckResult Checker::run() {
     });
     std::sort(cand.begin(), cand.end());  // deterministic whatever order the boxes come in
     double step = dt;
+    int limit_p = -1, limit_q = -1;  // the pair that limits the step (reported at the step limit)
     for (auto [p, q] : cand) {
       PairInfo& pi = info(p, q);
       if (pi.done) continue;
@@ -699,6 +705,8 @@ FoldCheckResult Checker::run() {
         pi.done = true;
         continue;
       }
+      // Still covered by the proof made when it was last examined, beyond this step: skip.
+      if (pi.safe_until >= t + dt) continue;
       double h;  // how long from t this pair is proved apart
       if (pi.kind == PairKind::cone) {
         Arc A, B;
@@ -743,9 +751,11 @@ FoldCheckResult Checker::run() {
         fail(t, p, q, centre_[p], centre_[q], why.str());
         return res;
       }
-      step = std::min(step, h);
+      pi.safe_until = t + h;
+      if (h < step) step = h, limit_p = p, limit_q = q;
     }
     dt = step;
+    last_p = limit_p, last_q = limit_q;
     t += dt;
     if (t >= 1) {
       res.verified = true;
@@ -756,7 +766,12 @@ FoldCheckResult Checker::run() {
     }
   }
   res.t = t;
+  res.out_of_budget = true;
   res.message = "step limit reached at t = " + std::to_string(t);
+  if (last_p >= 0) {
+    res.face_a = pc_[last_p].faces.front(), res.face_b = pc_[last_q].faces.front();
+    res.message += " (steps limited by faces " + std::to_string(res.face_a) + " and " + std::to_string(res.face_b) + ")";
+  }
   res.pairs = static_cast<int>(pairs_.size());
   return res;
 }
