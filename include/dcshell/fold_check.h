@@ -32,6 +32,9 @@ struct FoldCheckOptions {
   /// Smallest step; a pair that forces a smaller one is reported (not verified).
   double min_step = 1e-9;
   int max_steps = 100000;
+  /// Work budget in piece placements (each step places every rigid piece once: steps x pieces);
+  /// 0 = none. A count, not a time: the same nets pass or run out on every machine.
+  long long max_work = 0;
   /// Contact tolerance relative to the net size (diagonal of its bounding box): closer than this
   /// counts as a collision; it also absorbs floating-point rounding of the folded coordinates.
   double tolerance = 1e-9;
@@ -40,6 +43,7 @@ struct FoldCheckOptions {
 struct FoldCheckResult {
   bool verified = false;  ///< the whole path t in [0, 1] is free of self-intersection
   int steps = 0;
+  bool out_of_budget = false;  ///< stopped by max_steps / max_work, not by a contact (undecided)
   double t = 1;               ///< where the check stopped (1 when verified)
   int face_a = -1, face_b = -1;  ///< the colliding (or too close) faces when not verified
   std::string message;        ///< why not verified; empty when verified

@@ -42,10 +42,18 @@ struct UnfoldOptions {
   /// reflex edge either. Files round coordinates (the shared convex models are up to 1.5e-5 rad
   /// off-convex); a fold of 0.006 degrees is invisible on paper.
   double flat_angle = 1e-4;
-  /// The straight-line folding path of a net may collide. The best overlap-free nets are checked
-  /// in score order (fold_check.h) and the first one that folds without collision is returned;
-  /// this many at most (none for shells over 5,000 faces: the check is then the caller's; 0 = no check).
-  int fold_candidates = 6;
+  /// The straight-line folding path of a net may collide. Overlap-free nets are checked
+  /// (fold_check.h) in turn and the first one that folds without collision is returned: first the
+  /// search's nets in score order, then further distinct trees of the heuristics (more directions,
+  /// jitters, random trees). At most this many nets are checked (none for shells over 5,000
+  /// faces: the check is then the caller's; 0 = no check).
+  int fold_candidates = 64;
+  /// Work budget of that selection, in units of one piece placed by the check (a step places
+  /// every rigid piece) or one face of a tree decoded. Each net is first checked with a small
+  /// share (`fold_first_work`); a net that runs out of it undecided is re-checked with the rest
+  /// only if no net verifies. A count, not a time: the result is the same on every machine.
+  long long fold_work = 2000000;
+  long long fold_first_work = 40000;
 };
 
 /// Features of a net, each in model units.

@@ -279,6 +279,8 @@ struct PairInfo {
   std::vector<int> up_p, up_q;  // pieces whose hinges lie between each piece and the common ancestor
   std::vector<int> fixed;       // shell vertices the two pieces keep in common along the path
   bool shares = false;          // the pieces share a shell vertex (they touch in the folded shell)
+  double safe_until = 0;        // proved disjoint from the state it was last examined at up to here
+  int flat_apart = -1;          // faces do not overlap in the flat net (1), do (0), not tested yet (-1)
 };
 
 class Checker {
@@ -314,6 +316,7 @@ class Checker {
   void classify(int p, int q, PairInfo& pi);
   double end_window(int p, int q, PairInfo& pi);
   double plane_window(int p, int q, const PairInfo& pi);
+  double plane_advance(int p, int q, const PairInfo& pi);
   bool cone_arc(int p, const Vec2& at, Arc* arc) const;
   int face_near(int piece, const Vec3& world) const;
   std::vector<Vec3> hull_world(int p, const Rigid& T) const {
@@ -491,6 +494,87 @@ void Checker::classify(int p, int q, PairInfo& pi) {
   pi.window = end_window(p, q, pi);
 }
 
+// Plane advancement for a pair at (nearly) zero distance, from the current state t: the largest
+// tau such that a plane fixed to piece p keeps p on one closed side and q strictly on the other on
+// (t, t + tau]; 0 when none is found. Distance stepping crawls there (two corners 1e-6 off a
+// common hinge stay ~1e-6 apart the whole way; t = 0 touches stop it at once), while the first
+// order motion separates them: the mirror of plane_window. Planes pass through the support point
+// c of p's hull in direction m (p's outward edge normals, q's inward ones, in p's plane), normal
+// n = cos(phi) n_p + sin(phi) m, phi on a grid in [0, pi]: p lies in its plane on the side
+// m.(y - c) <= 0, so n.(y - c) <= 0 on all of p. For q's hull corners x: h = n.(x - c) >= -tol,
+// h' = n . w(x) with w the velocity of x relative to p, and h(t + s) >= max(h, 0) + s h' - s^2 M / 2
+// with M = 4 S L(x) as in the end window (s <= 1/(2S)): positive up to the positive root. A
+// corner within tol of the plane needs h' > 0 by a margin over rounding. Corners kept in common
+// on every hinge are excluded (they never move apart).
+double Checker::plane_advance(int p, int q, const PairInfo& pi) {
+  const bool swapped = p > q;
+  const std::vector<int>& up_p = swapped ? pi.up_q : pi.up_p;
+  const std::vector<int>& up_q = swapped ? pi.up_p : pi.up_q;
+  double S = 0;
+  for (int b : up_p) S += std::abs(pc_[b].angle);
+  for (int b : up_q) S += std::abs(pc_[b].angle);
+  if (S <= 0) return 0;
+  const Piece &P = pc_[p], &Q = pc_[q];
+  const std::vector<Vec3>&xp = poly_[p].v, &xq = poly_[q].v;
+  const int mp = static_cast<int>(xp.size()), mq = static_cast<int>(xq.size());
+  if (mp < 3 || mq < 3) return 0;
+  const Vec3 np = poly_[p].n;
+  std::vector<Vec3> vel(mq);
+  std::vector<double> L(mq, 0.0);
+  std::vector<char> fixed(mq, 0);
+  for (int i = 0; i < mq; ++i) {
+    const Vec3& x = xq[i];
+    fixed[i] = std::find(pi.fixed.begin(), pi.fixed.end(), Q.hull_vertex[i]) != pi.fixed.end();
+    vel[i].setZero();
+    for (const auto* side : {&up_q, &up_p})
+      for (int b : *side) {
+        Vec3 w = x - axis_w_a_[b];
+        const Vec3& u = axis_w_u_[b];
+        vel[i] += (side == &up_q ? 1 : -1) * pc_[b].angle * u.cross(w);
+        L[i] += std::abs(pc_[b].angle) * (w - w.dot(u) * u).norm();
+      }
+  }
+  std::vector<Vec3> dirs;
+  for (int i = 0; i < mp; ++i) {
+    Vec3 m = (xp[(i + 1) % mp] - xp[i]).cross(np);  // outward: hull counter-clockwise about n_p
+    if (m.norm() > 0) dirs.push_back(m.normalized());
+  }
+  for (int i = 0; i < mq; ++i) {
+    Vec3 m = (xq[(i + 1) % mq] - xq[i]).cross(poly_[q].n);
+    m -= m.dot(np) * np;  // q's inward edge normal, projected into p's plane
+    if (m.norm() > 1e-12) dirs.push_back(-m.normalized());
+  }
+  double best = 0;
+  std::vector<double> hz(mq), hm(mq), dz(mq), dm(mq);
+  for (int i = 0; i < mq; ++i) hz[i] = np.dot(xq[i] - xp[0]), dz[i] = np.dot(vel[i]);
+  for (const Vec3& m : dirs) {
+    double c = -kInf;
+    for (const auto& y : xp) c = std::max(c, m.dot(y));
+    for (int i = 0; i < mq; ++i) hm[i] = m.dot(xq[i]) - c, dm[i] = m.dot(vel[i]);
+    for (int k = 0; k <= 16; ++k) {
+      const double phi = k * M_PI / 16, sn = k == 0 || k == 16 ? 0.0 : std::sin(phi), cs = k == 16 ? -1.0 : std::cos(phi);
+      double window = 0.5 / S;
+      for (int i = 0; i < mq && window > best; ++i) {
+        if (fixed[i]) continue;
+        const double h = cs * hz[i] + sn * hm[i], dh = cs * dz[i] + sn * dm[i], M = 4 * S * L[i];
+        double root;
+        if (h < -tol_) {
+          window = 0;
+        } else if (h <= tol_) {  // on the plane: must leave it towards q's side
+          if (!(dh > 1e-9 * (L[i] + scale_))) window = 0;
+          root = M > 0 ? 2 * dh / M : kInf;
+        } else {
+          root = M > 0 ? (dh + std::sqrt(dh * dh + 2 * M * h)) / M : dh >= 0 ? kInf : h / -dh;
+        }
+        if (window == 0) break;
+        window = std::min(window, root);
+      }
+      best = std::max(best, window);
+    }
+  }
+  return best;
+}
+
 // Do the two pieces' faces overlap in the flat net (interiors, exact on the net's doubles)?
 bool Checker::flat_overlap(int p, int q) const {
   using Box2 = CGAL::Box_intersection_d::Box_with_info_d<double, 2, int>;
@@ -662,10 +746,22 @@ FoldCheckResult Checker::run() {
     res.pairs = static_cast<int>(pairs_.size());
   };
 
-  double t = 0, dt = 1.0 / 16;
   std::vector<double> abs_lever(nb), abs_theta(nb);
   std::vector<std::pair<int, int>> cand;
-  for (res.steps = 0; res.steps < opt_.max_steps; ++res.steps) {
+  // Steps allowed: max_steps, and max_work / pieces when a work budget is given.
+  const long long step_cap =
+      opt_.max_work > 0 ? std::min<long long>(opt_.max_steps, std::max<long long>(1, opt_.max_work / nb)) : opt_.max_steps;
+  // Plane advancement, either piece's plane; at t = 0 only when the flat faces do not overlap.
+  double t = 0, dt = 1.0 / 16;
+  auto advance = [&](int p, int q, PairInfo& pi) {
+    if (t == 0) {
+      if (pi.flat_apart < 0) pi.flat_apart = !flat_overlap(p, q);
+      if (!pi.flat_apart) return 0.0;
+    }
+    return std::min(1 - t, std::max(plane_advance(p, q, pi), plane_advance(q, p, pi)));
+  };
+  int last_p = -1, last_q = -1;
+  for (res.steps = 0; res.steps < step_cap; ++res.steps) {
     place(t);
     double max_lever = 0, max_theta = 0;
     for (int b = 0; b < nb; ++b) {
@@ -692,6 +788,7 @@ FoldCheckResult Checker::run() {
     });
     std::sort(cand.begin(), cand.end());  // deterministic whatever order the boxes come in
     double step = dt;
+    int limit_p = -1, limit_q = -1;  // the pair that limits the step (reported at the step limit)
     for (auto [p, q] : cand) {
       PairInfo& pi = info(p, q);
       if (pi.done) continue;
@@ -699,6 +796,8 @@ FoldCheckResult Checker::run() {
         pi.done = true;
         continue;
       }
+      // Still covered by the proof made when it was last examined, beyond this step: skip.
+      if (pi.safe_until >= t + dt) continue;
       double h;  // how long from t this pair is proved apart
       if (pi.kind == PairKind::cone) {
         Arc A, B;
@@ -711,24 +810,33 @@ FoldCheckResult Checker::run() {
         double S = 0;
         for (int b : pi.up_p) S += std::abs(pc_[b].angle);
         for (int b : pi.up_q) S += std::abs(pc_[b].angle);
-        if (d <= 0) {
+        double hp = d / S < dt ? advance(p, q, pi) : 0;  // directions turn at most S rad per unit t relative to each other
+        if (d <= 0 && hp > 0) {
+          h = hp;
+        } else if (d <= 0) {
           Vec3 at = T_[p](lift(pi.cone_at));
           fail(t, p, q, at, at, t == 0 ? "touch beside their common corner in the flat net" : "cross at their common corner");
           return res;
+        } else {
+          h = std::max(d / S, hp);
         }
-        h = d / S;  // directions turn at most S rad per unit t relative to each other
       } else {
         double d = polygon_distance(poly_[p], poly_[q]) - tol_;
-        if (d <= 0) {
-          fail(t, p, q, centre_[p], centre_[q], t == 0 ? "touch in the flat net" : (t >= 1 ? "touch in the folded shell" : "collide"));
-          if (t >= 1) res.message += " (no separating plane proves the approach)";
-          return res;
-        }
         double L = 0, Sp = 0, Sq = 0;
         for (int b : pi.up_p) L += lever(p, b), Sp += std::abs(pc_[b].angle);
         for (int b : pi.up_q) L += lever(q, b), Sq += std::abs(pc_[b].angle);
         double S = std::max(Sp, Sq);
-        h = d / (L + d * S);  // travel(h, L, S) = d
+        double hd = d > 0 ? d / (L + d * S) : 0;  // travel(h, L, S) = d
+        double hp = hd < dt ? advance(p, q, pi) : 0;
+        if (d <= 0 && hp > 0) {
+          h = hp;
+        } else if (d <= 0) {
+          fail(t, p, q, centre_[p], centre_[q], t == 0 ? "touch in the flat net" : (t >= 1 ? "touch in the folded shell" : "collide"));
+          if (t >= 1) res.message += " (no separating plane proves the approach)";
+          return res;
+        } else {
+          h = std::max(hd, hp);
+        }
       }
       if (t + h >= 1 - pi.window) {
         pi.done = true;
@@ -743,9 +851,11 @@ FoldCheckResult Checker::run() {
         fail(t, p, q, centre_[p], centre_[q], why.str());
         return res;
       }
-      step = std::min(step, h);
+      pi.safe_until = t + h;
+      if (h < step) step = h, limit_p = p, limit_q = q;
     }
     dt = step;
+    last_p = limit_p, last_q = limit_q;
     t += dt;
     if (t >= 1) {
       res.verified = true;
@@ -756,7 +866,12 @@ FoldCheckResult Checker::run() {
     }
   }
   res.t = t;
+  res.out_of_budget = true;
   res.message = "step limit reached at t = " + std::to_string(t);
+  if (last_p >= 0) {
+    res.face_a = pc_[last_p].faces.front(), res.face_b = pc_[last_q].faces.front();
+    res.message += " (steps limited by faces " + std::to_string(res.face_a) + " and " + std::to_string(res.face_b) + ")";
+  }
   res.pairs = static_cast<int>(pairs_.size());
   return res;
 }

@@ -527,21 +527,69 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     for (int i : idx) ranked.push_back(search.evaluated[i]);
   }
   st.first = ref;
-  // The first overlap-free candidate whose folding path is verified; else the best one.
+  // Fold selection: the first overlap-free net whose folding path is verified; else the best
+  // one. Candidates come cheapest first: the search's nets in score order (already evaluated),
+  // then fresh trees of the heuristics (more directions, jitters, random weights) as long as the
+  // work budget lasts. Each net gets a small share of the budget: a failing check usually stops
+  // at its first contact after few steps, but an undecided one (out of steps) is set aside and
+  // re-checked with the rest of the budget only when no net verifies. Deterministic: the budget
+  // counts work units (pieces placed, faces decoded), never time.
   const int checks = options.fold_candidates <= 0 ? 0 : g.F.size() > 5000 ? 0 : options.fold_candidates;
   Net net;
   bool have = false;
-  for (std::size_t i = 0; i < ranked.size() && st.fold_checks < checks; ++i) {
-    if (ranked[i].metrics.overlapping_pairs != 0) break;
-    NetMetrics m;
-    Net candidate = finish_net(g, ranked[i].genome, &m);
-    if (m.overlapping_pairs != 0) continue;
-    FoldCheckResult fc = check_folding(candidate);
-    ++st.fold_checks;
-    if (!have || fc.verified) {
-      net = std::move(candidate), st.result = m, st.fold = fc, st.heuristic = ranked[i].heuristic, have = true;
-      if (fc.verified) break;
+  if (checks > 0) {
+    long long work = options.fold_work;
+    std::unordered_set<std::uint64_t> seen;
+    for (const auto& c : search.evaluated) seen.insert(tree_hash(folded_groups(g, c.genome)));
+    struct Deferred {
+      Genome genome;
+      std::string heuristic;
+      double t;
+    };
+    std::vector<Deferred> deferred;
+    auto check = [&](const Genome& genome, const std::string& heuristic, long long budget, bool first_pass) {
+      NetMetrics m;
+      Net candidate = finish_net(g, genome, &m);
+      work -= 8 + static_cast<long long>(g.F.size());
+      if (m.overlapping_pairs != 0) return false;
+      FoldCheckOptions fo;
+      fo.max_work = std::max<long long>(budget, 1);
+      FoldCheckResult fc = check_folding(candidate, fo);
+      ++st.fold_checks;
+      work -= static_cast<long long>(fc.steps) * std::max(fc.pieces, 1);
+      if (first_pass && fc.out_of_budget) deferred.push_back({genome, heuristic, fc.t});
+      if (!have || fc.verified) {
+        net = std::move(candidate), st.result = m, st.fold = fc, st.heuristic = heuristic, have = true;
+      }
+      return fc.verified;
+    };
+    bool done = false;
+    auto first_budget = [&] { return std::min(options.fold_first_work, work); };
+    for (std::size_t i = 0; i < ranked.size() && !done && st.fold_checks < checks && work > 0; ++i) {
+      if (ranked[i].metrics.overlapping_pairs != 0) break;
+      done = check(ranked[i].genome, ranked[i].heuristic, first_budget(), true);
     }
+    // Fresh trees: attempt numbers past the search's, every heuristic in turn (only the ones
+    // that differ from the trees seen so far cost a decode and an overlap test).
+    const auto preferred = preferred_directions(g);
+    const std::vector<UnfoldHeuristic> hs = {UnfoldHeuristic::steepest, UnfoldHeuristic::flat,
+                                             UnfoldHeuristic::min_perimeter, UnfoldHeuristic::random};
+    for (int attempt = 1; !done && st.fold_checks < checks && work > 0 && attempt <= 4 * checks; ++attempt)
+      for (auto h : hs) {
+        if (done || st.fold_checks >= checks || work <= 0) break;
+        Genome w = heuristic_genome(g, h, attempt, options.seed, preferred);
+        auto folded = folded_groups(g, w);
+        if (!seen.insert(tree_hash(folded)).second) continue;
+        NetMetrics m = sg.evaluate(folded);
+        work -= 8 + sg.faces();
+        if (m.overlapping_pairs != 0) continue;
+        st.attempts++;
+        done = check(w, to_string(h), first_budget(), true);
+      }
+    // Undecided nets, the one that got furthest first, with what is left.
+    std::stable_sort(deferred.begin(), deferred.end(), [](const Deferred& a, const Deferred& b) { return a.t > b.t; });
+    for (std::size_t i = 0; i < deferred.size() && !done && work > 0; ++i)
+      done = check(deferred[i].genome, deferred[i].heuristic, work, false);
   }
   if (!have) {
     net = finish_net(g, ranked.front().genome, &st.result);
