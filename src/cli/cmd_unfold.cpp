@@ -87,7 +87,8 @@ int run_unfold(int argc, char** argv) {
     std::string heuristic = "best", objective = "hull-area", out, format = "svg", paper = "a4", motion;
     std::uint64_t seed = 1;
     int tries = 0, ga_evaluations = 0, frames = 31;
-    double scale = 0;
+    double scale = 0, fold_slack = 0;
+    long long fold_work = 0;
     opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (created atomically)")(
         "force,f", "replace an existing non-empty output directory")(
         "heuristic", po::value(&heuristic)->default_value("best"),
@@ -101,7 +102,11 @@ int run_unfold(int argc, char** argv) {
         "scale", po::value(&scale), "millimetres per model unit (default: --fit)")(
         "fit", "largest common scale at which every piece fits on a page")("no-tabs", "no glue tabs")(
         "motion", po::value(&motion), "write the folding motion as numbered OBJ frames FILE_000.obj...")(
-        "motion-frames", po::value(&frames)->default_value(31), "frames of the motion (>= 2)");
+        "motion-frames", po::value(&frames)->default_value(31), "frames of the motion (>= 2)")(
+        "fold-slack", po::value(&fold_slack)->default_value(UnfoldOptions{}.fold_slack),
+        "check the folding of nets up to this fraction worse (objective) than the best; 0: the best only")(
+        "fold-work", po::value(&fold_work)->default_value(UnfoldOptions{}.fold_work),
+        "work budget of the folding checks per shell (pieces placed; a count, not a time)");
     std::vector<std::string> inputs;
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
@@ -118,6 +123,10 @@ int run_unfold(int argc, char** argv) {
     }
     uo.seed = seed;
     uo.tries = tries;
+    if (!(fold_slack >= 0) || !std::isfinite(fold_slack)) throw InputError("--fold-slack must be a finite number >= 0");
+    if (fold_work < 0) throw InputError("--fold-work must be >= 0");
+    uo.fold_slack = fold_slack;
+    uo.fold_work = fold_work;
     if (out.empty()) throw InputError("--out DIR is required (see 'dcshell unfold --help')");
     if (inputs.empty()) throw InputError("no input shells (see 'dcshell unfold --help')");
     if (format == "svg") so.format = SheetOptions::Format::svg;

@@ -547,11 +547,20 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
       double t;
     };
     std::vector<Deferred> deferred;
+    // The best overlap-free net's score: a candidate worse than it by more than the slack is
+    // not worth a check (it would be returned only for its fold).
+    double best_score = std::numeric_limits<double>::infinity();
+    for (const auto& c : ranked)
+      if (c.metrics.overlapping_pairs == 0) best_score = std::min(best_score, objective_score(c.metrics, ref, options.objective));
+    const double max_score = best_score * (1 + std::max(options.fold_slack, 0.0));
+    auto within_slack = [&](const NetMetrics& m) {
+      return m.overlapping_pairs == 0 && objective_score(m, ref, options.objective) <= max_score;
+    };
     auto check = [&](const Genome& genome, const std::string& heuristic, long long budget, bool first_pass) {
       NetMetrics m;
       Net candidate = finish_net(g, genome, &m);
       work -= 8 + static_cast<long long>(g.F.size());
-      if (m.overlapping_pairs != 0) return false;
+      if (m.overlapping_pairs != 0 || (have && !within_slack(m))) return false;
       FoldCheckOptions fo;
       fo.max_work = std::max<long long>(budget, 1);
       FoldCheckResult fc = check_folding(candidate, fo);
@@ -567,6 +576,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     auto first_budget = [&] { return std::min(options.fold_first_work, work); };
     for (std::size_t i = 0; i < ranked.size() && !done && st.fold_checks < checks && work > 0; ++i) {
       if (ranked[i].metrics.overlapping_pairs != 0) break;
+      if (have && !within_slack(ranked[i].metrics)) continue;
       done = check(ranked[i].genome, ranked[i].heuristic, first_budget(), true);
     }
     // Fresh trees: attempt numbers past the search's, every heuristic in turn (only the ones
@@ -582,7 +592,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
         if (!seen.insert(tree_hash(folded)).second) continue;
         NetMetrics m = sg.evaluate(folded);
         work -= 8 + sg.faces();
-        if (m.overlapping_pairs != 0) continue;
+        if (!within_slack(m)) continue;
         st.attempts++;
         done = check(w, to_string(h), first_budget(), true);
       }
