@@ -423,7 +423,7 @@ SearchResult search_heuristics(const ShellGraph& g, const SearchGraph& sg, const
       if (!more && h != UnfoldHeuristic::min_perimeter) continue;
       Genome w = h == UnfoldHeuristic::greedy ? greedy_weights(g, sg, attempt, options.seed)
                                               : heuristic_genome(g, h, attempt, options.seed, preferred);
-      if (w.empty()) continue;  // greedy: shell beyond its work limit
+      if (w.empty()) w = heuristic_genome(g, UnfoldHeuristic::min_perimeter, attempt, options.seed, preferred);  // greedy: beyond its work limit
       auto folded = folded_groups(g, w);
       if (!seen.insert(tree_hash(folded)).second) continue;
       NetMetrics m = sg.evaluate(folded);

@@ -19,8 +19,6 @@
 // on the doubles (triangle_interiors_overlap). The smaller piece is merged into the larger's
 // frame, so every triangle moves O(log n) times.
 #include <algorithm>
-#include <cstdio>
-#include <cstdlib>
 #include <cmath>
 #include <numeric>
 #include <unordered_map>
@@ -262,30 +260,69 @@ class Greedy {
     roots.erase(std::unique(roots.begin(), roots.end()), roots.end());
     std::vector<char> mark(G_.num_facets, 0);
     for (int r : roots) {
-      std::vector<int> members = std::move(pieces_[r].facets);
-      pieces_[r] = Piece{};
-      for (int k : members)
+      // Parts of piece r; the largest keeps r's grid (the others' faces leave it), so cutting a
+      // few facets off a large piece costs the few facets, not the piece.
+      std::vector<std::vector<int>> parts;
+      for (int k : pieces_[r].facets)
         for (int gi : facet_groups_[k]) refused_[gi] = 0;
-      for (int k0 : members) {
+      for (int k0 : pieces_[r].facets) {
         if (mark[k0]) continue;
-        Piece p;
-        std::vector<int> stack = {k0};
+        std::vector<int> part, stack = {k0};
         mark[k0] = 1;
         while (!stack.empty()) {
           int k = stack.back();
           stack.pop_back();
-          p.facets.push_back(k);
-          piece_of_[k] = k0;
-          for (int f : facet_faces_[k]) insert(p, f);
+          part.push_back(k);
           for (int gi : facet_groups_[k]) {
             if (!folded_[gi]) continue;
             int o = ends_[gi][0] == k ? ends_[gi][1] : ends_[gi][0];
             if (!mark[o]) mark[o] = 1, stack.push_back(o);
           }
         }
-        pieces_[k0] = std::move(p);
+        parts.push_back(std::move(part));
       }
+      std::size_t keep = 0;
+      for (std::size_t i = 1; i < parts.size(); ++i)
+        if (parts[i].size() > parts[keep].size()) keep = i;
+      Piece big = std::move(pieces_[r]);
+      pieces_[r] = Piece{};
+      std::vector<char> leaving(pos_.size(), 0);
+      for (std::size_t i = 0; i < parts.size(); ++i) {
+        if (i == keep) continue;
+        Piece p;
+        for (int k : parts[i]) {
+          p.facets.push_back(k);
+          piece_of_[k] = parts[i][0];
+          for (int f : facet_faces_[k]) {
+            leaving[f] = 1;
+            remove(big, f);
+            insert(p, f);
+          }
+        }
+        pieces_[parts[i][0]] = std::move(p);
+      }
+      auto gone = [&](int f) { return leaving[f] != 0; };
+      big.faces.erase(std::remove_if(big.faces.begin(), big.faces.end(), gone), big.faces.end());
+      big.large.erase(std::remove_if(big.large.begin(), big.large.end(), gone), big.large.end());
+      big.facets = parts[keep];
+      int root = parts[keep][0];
+      for (int k : big.facets) piece_of_[k] = root;
+      pieces_[root] = std::move(big);
     }
+  }
+
+  void remove(Piece& p, int f) {
+    long i0, i1, j0, j1;
+    cell_range(box_of(pos_[f]), i0, i1, j0, j1);
+    if ((i1 - i0 + 1) * (j1 - j0 + 1) > kMaxCells) return;  // in p.large
+    for (long i = i0; i <= i1; ++i)
+      for (long j = j0; j <= j1; ++j) {
+        auto it = p.grid.find(key(i, j));
+        if (it == p.grid.end()) continue;
+        auto& v = it->second;
+        charge(static_cast<double>(v.size()));
+        v.erase(std::remove(v.begin(), v.end(), f), v.end());
+      }
   }
 
   int piece_count() const {
