@@ -8,6 +8,7 @@
 //
 // usage: bench_unfold [--data DIR] [--shells DIR] [--out FILE] [--repeat N] [--max-faces N]
 //                     [--only NAME,...] [--no-ga] [--issue69] [--configs LABEL,...] [--ga-evaluations N]
+//                     [--digits N]
 #include <boost/program_options.hpp>
 
 #include <algorithm>
@@ -132,7 +133,7 @@ int main(int argc, char** argv) {
   std::string data = "../shared/data", out, shells_dir, only;
   int repeat = 3;
   int max_faces = 1 << 30;
-  int ga_evaluations = 0;
+  int ga_evaluations = 0, digits = 4;
   std::string config_list;
   po::options_description opts("bench_unfold options");
   opts.add_options()("help,h", "help")("data", po::value(&data), "shared data directory")(
@@ -142,8 +143,9 @@ int main(int argc, char** argv) {
       "shells", po::value(&shells_dir), "directory of DC-shell sets DIR/<Model>/shell_*.obj (per-model totals)")(
       "issue69", "only the issue's 69 inputs (convex models, hulls of Bulbasaur, Squirtle, Cow parts)")(
       "configs", po::value(&config_list),
-      "comma-separated columns to run (steepest,flat,min-perimeter,random,best/hull,best/cut,ga/hull,ga/cut); default all")(
-      "ga-evaluations", po::value(&ga_evaluations), "GA evaluation budget (0 = automatic)");
+      "comma-separated columns to run (steepest,flat,min-perimeter,random,greedy,best/hull,best/cut,ga/hull,ga/cut); default all")(
+      "ga-evaluations", po::value(&ga_evaluations), "GA evaluation budget (0 = automatic)")(
+      "digits", po::value(&digits), "significant digits of the cut lengths in the table (default 4)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (!fs::is_directory(data)) {
@@ -187,6 +189,7 @@ int main(int argc, char** argv) {
                                  {"flat", UnfoldHeuristic::flat, UnfoldObjective::hull_area},
                                  {"min-perimeter", UnfoldHeuristic::min_perimeter, UnfoldObjective::cut_length},
                                  {"random", UnfoldHeuristic::random, UnfoldObjective::hull_area},
+                                 {"greedy", UnfoldHeuristic::greedy, UnfoldObjective::cut_length},
                                  {"best/hull", UnfoldHeuristic::best, UnfoldObjective::hull_area},
                                  {"best/cut", UnfoldHeuristic::best, UnfoldObjective::cut_length}};
   if (!vm.count("no-ga")) {
@@ -249,7 +252,7 @@ int main(int argc, char** argv) {
       bool okk = r.stats.result.overlapping_pairs == 0;
       ok_count[c.label] += okk;
       if (in69) ok_count69[c.label] += okk;
-      table << " " << fmt(r.seconds * 1000, 3) << " ms, " << (okk ? "ok" : "OVERLAP") << ", cut " << fmt(r.stats.result.cut_length)
+      table << " " << fmt(r.seconds * 1000, 3) << " ms, " << (okk ? "ok" : "OVERLAP") << ", cut " << fmt(r.stats.result.cut_length, digits)
             << ", hull " << fmt(r.stats.result.hull_area) << " |";
       runs[c.label] = std::move(r);
     }

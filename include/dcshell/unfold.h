@@ -19,11 +19,13 @@ namespace dcshell {
 
 /// How the cut tree is chosen. `best`: every heuristic with retries, the best overlap-free net
 /// by the objective. `ga`: `best`, then the genetic search of unfold_ga.h seeded with its nets.
-enum class UnfoldHeuristic { best, steepest, flat, min_perimeter, random, ga };
+/// `greedy`: overlap-aware Kruskal (longest fold first, a join that would overlap is refused),
+/// which `best` and `ga` also try with the cut-length objective.
+enum class UnfoldHeuristic { best, steepest, flat, min_perimeter, random, ga, greedy };
 /// What "best" means among overlap-free nets (the other feature breaks ties, weight 1/100).
 enum class UnfoldObjective { hull_area, cut_length };
 
-/// "steepest|flat|min-perimeter|random|ga|best" <-> enum. Parsing throws std::invalid_argument
+/// "steepest|flat|min-perimeter|random|greedy|ga|best" <-> enum. Parsing throws std::invalid_argument
 /// naming the string and the accepted values.
 UnfoldHeuristic parse_unfold_heuristic(const std::string&);
 UnfoldObjective parse_unfold_objective(const std::string&);

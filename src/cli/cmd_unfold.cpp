@@ -92,7 +92,7 @@ int run_unfold(int argc, char** argv) {
     opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (created atomically)")(
         "force,f", "replace an existing non-empty output directory")(
         "heuristic", po::value(&heuristic)->default_value("best"),
-        "steepest|flat|min-perimeter|random|ga|best (best: every heuristic with retries; ga: then a genetic search)")(
+        "steepest|flat|min-perimeter|random|greedy|ga|best (best: every heuristic with retries; ga: then a genetic search; greedy: overlap-aware Kruskal, longest fold first, refusing folds that overlap)")(
         "objective", po::value(&objective)->default_value("hull-area"), "hull-area|cut-length: what 'best' minimises")(
         "seed", po::value(&seed)->default_value(1), "random seed (results are reproducible)")(
         "tries", po::value(&tries)->default_value(0), "cut trees per heuristic (0 = automatic)")(

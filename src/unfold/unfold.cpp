@@ -30,13 +30,14 @@ const std::vector<std::pair<UnfoldHeuristic, std::string>> kHeuristicNames = {
     {UnfoldHeuristic::flat, "flat"},
     {UnfoldHeuristic::min_perimeter, "min-perimeter"},
     {UnfoldHeuristic::random, "random"},
-    {UnfoldHeuristic::ga, "ga"}};
+    {UnfoldHeuristic::ga, "ga"},
+    {UnfoldHeuristic::greedy, "greedy"}};
 }  // namespace
 
 UnfoldHeuristic parse_unfold_heuristic(const std::string& s) {
   for (auto& [h, n] : kHeuristicNames)
     if (n == s) return h;
-  throw std::invalid_argument("unknown heuristic '" + s + "' (steepest|flat|min-perimeter|random|ga|best)");
+  throw std::invalid_argument("unknown heuristic '" + s + "' (steepest|flat|min-perimeter|random|greedy|ga|best)");
 }
 std::string to_string(UnfoldHeuristic h) {
   for (auto& [x, n] : kHeuristicNames)
@@ -384,6 +385,9 @@ Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std
 // default spends about 100 units per heuristic: a few trees for a small shell, one per heuristic
 // from 100 faces on (the retries continue until a net is overlap-free). That keeps the default
 // at about a millisecond per shell of a composite model; --tries or the GA search further.
+// Greedy variants `best` tries with the cut-length objective (greedy_weights).
+constexpr int kGreedyVariants = 4;
+
 int automatic_tries(int faces) { return std::clamp(100 / (8 + std::max(faces, 1)), 1, 64); }
 
 }  // namespace
@@ -417,7 +421,9 @@ SearchResult search_heuristics(const ShellGraph& g, const SearchGraph& sg, const
     if (!more && !more_mst) break;
     for (auto h : hs) {
       if (!more && h != UnfoldHeuristic::min_perimeter) continue;
-      Genome w = heuristic_genome(g, h, attempt, options.seed, preferred);
+      Genome w = h == UnfoldHeuristic::greedy ? greedy_weights(g, sg, attempt, options.seed)
+                                              : heuristic_genome(g, h, attempt, options.seed, preferred);
+      if (w.empty()) w = heuristic_genome(g, UnfoldHeuristic::min_perimeter, attempt, options.seed, preferred);  // greedy: beyond its work limit
       auto folded = folded_groups(g, w);
       if (!seen.insert(tree_hash(folded)).second) continue;
       NetMetrics m = sg.evaluate(folded);
@@ -426,6 +432,19 @@ SearchResult search_heuristics(const ShellGraph& g, const SearchGraph& sg, const
       double s = objective_score(m, r.evaluated.front().metrics, options.objective);
       if (s < best_score) best_score = s, r.best = static_cast<int>(r.evaluated.size()) - 1;
     }
+  }
+  // Cut-length objective: the overlap-aware greedy trees too (longest fold first, Blender's
+  // priority, angle and length, jittered lengths); they refuse the folds that overlap instead
+  // of throwing the whole tree away. After the others: the first net stays the reference.
+  for (int v = 0; cut_first && v < kGreedyVariants && !r.evaluated.empty(); ++v) {
+    Genome w = greedy_weights(g, sg, v, options.seed);
+    if (w.empty()) break;
+    auto folded = folded_groups(g, w);
+    if (!seen.insert(tree_hash(folded)).second) continue;
+    NetMetrics m = sg.evaluate(folded);
+    r.evaluated.push_back({std::move(w), m, to_string(UnfoldHeuristic::greedy)});
+    double s = objective_score(m, r.evaluated.front().metrics, options.objective);
+    if (s < best_score) best_score = s, r.best = static_cast<int>(r.evaluated.size()) - 1;
   }
   return r;
 }

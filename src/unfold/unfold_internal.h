@@ -108,6 +108,19 @@ Genome flat_tree_weights(const ShellGraph& g, const Eigen::Vector3d& c);
 Genome min_perimeter_weights(const ShellGraph& g, Rng& rng, double jitter);
 Genome random_weights(const ShellGraph& g, Rng& rng);
 
+/// Overlap-aware greedy cut tree (unfold_greedy.cpp): Kruskal over the groups in a priority
+/// order on the search graph, placing pieces rigidly as they are joined and refusing a join
+/// whose two pieces would overlap; when only refused joins remain, the smallest piece and its
+/// neighbour facets are cut free and rejoined (wider each time), past a budget the smallest
+/// piece is joined through its least overlapping group.
+/// Always a spanning tree (genome: 0 = folded, 1 = cut; fine groups), overlap-free when no join
+/// had to be forced (the decoder's overlap test decides). Variants: 0 longest fold first (a
+/// maximum-length spanning tree of folds where nothing overlaps), 1 Blender's default priority
+/// (0.5 x fold angle / pi - 0.05 x length / mean length), 2 angle and length alike, >= 3
+/// lengths jittered by (variant - 2) x 5% (seeded). Empty when the shell is too large for its
+/// work limit (counted in triangle tests, not time). Deterministic.
+Genome greedy_weights(const ShellGraph& g, const SearchGraph& sg, int variant, std::uint64_t seed);
+
 /// Scalar fitness to minimise: weighted normalised features; overlapping nets rank after all
 /// overlap-free ones, fewer overlaps first.
 double objective_score(const NetMetrics& m, const NetMetrics& ref, UnfoldObjective obj);

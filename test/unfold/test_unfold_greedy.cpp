@@ -1,0 +1,123 @@
+// Overlap-aware greedy cut trees (unfold_greedy.cpp): spanning trees, one piece, overlap-free
+// where no join had to be forced, deterministic; where the minimum-length cut tree overlaps the
+// greedy tree is overlap-free, and exactly that tree where it does not.
+#include <boost/test/unit_test.hpp>
+
+#include "dcshell/convex_hull.h"
+#include "dcshell/net_overlap.h"
+#include "dcshell/unfold.h"
+#include "unfold/unfold_internal.h"
+#include "unfold_test_util.h"
+
+using namespace dcshell;
+using namespace dcshell::test;
+using namespace dcshell::unfold_detail;
+
+namespace {
+
+// Convex hull of n seeded random points on an ellipsoid with axes 1, ay, az.
+Mesh ellipsoid_hull(int n, std::uint64_t seed, double ay, double az) {
+  Rng rng(seed);
+  std::vector<Point3> pts;
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d d = rng.direction();
+    pts.emplace_back(d.x(), ay * d.y(), az * d.z());
+  }
+  return convex_hull_mesh(pts);
+}
+
+int folded_count(const std::vector<char>& f) {
+  int n = 0;
+  for (char c : f) n += c;
+  return n;
+}
+
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(greedy_trees_are_spanning_one_piece_and_deterministic) {
+  std::vector<Mesh> shapes = {tetrahedron(), cube_triangles(), octahedron(), icosahedron(), dodecahedron(),
+                              subdivided_cube(4), ellipsoid_hull(60, 3, 1.6, 2.3), ellipsoid_hull(150, 4, 1, 3)};
+  for (std::size_t i = 0; i < shapes.size(); ++i) {
+    BOOST_TEST_CONTEXT("shape " << i) {
+      ShellGraph g = build_shell_graph(shapes[i], 1e-4);
+      SearchGraph sg = make_search_graph(g, 1e-4);
+      for (int variant = 0; variant < 5; ++variant) {
+        Genome w = greedy_weights(g, sg, variant, 1);
+        BOOST_TEST_REQUIRE(w.size() == static_cast<std::size_t>(g.num_groups()));
+        BOOST_TEST((greedy_weights(g, sg, variant, 1) == w));  // deterministic
+        // A spanning tree of the facet graph, reproduced exactly by Kruskal (0 = folded).
+        auto folded = folded_groups(g, w);
+        BOOST_TEST(folded_count(folded) == g.num_facets - 1);
+        for (int gi = 0; gi < g.num_groups(); ++gi) BOOST_TEST((folded[gi] != 0) == (w[gi] == 0.0));
+        // One piece; overlap-free by the decoder's exact test, also after the final layout.
+        NetMetrics m;
+        Net net = finish_net(g, w, &m);
+        auto c = check_net(net);
+        BOOST_TEST(c.one_piece);
+        BOOST_TEST(c.tree);
+        BOOST_TEST(c.congruent);
+        BOOST_TEST(m.overlapping_pairs == 0);
+        if (m.overlapping_pairs == 0) BOOST_TEST(c.ok(), c.problem);
+      }
+    }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(greedy_repairs_an_overlapping_minimum_length_tree) {
+  // Elongated random hulls: find those whose minimum-length cut tree overlaps (the search is
+  // deterministic: seeded points). There the longest-fold-first greedy net must be overlap-free,
+  // no shorter than that minimum, and shorter than the steepest-edge first net; where the
+  // minimum tree does not overlap, the greedy tree is exactly it (no join is ever refused).
+  int overlapping = 0, free = 0;
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    Mesh m = ellipsoid_hull(120, seed, 1.3, 3.5);
+    ShellGraph g = build_shell_graph(m, 1e-4);
+    SearchGraph sg = make_search_graph(g, 1e-4);
+    Rng rng(1);
+    auto mst_folded = folded_groups(g, min_perimeter_weights(g, rng, 0.0));
+    NetMetrics mst = decode(g, mst_folded, 1).metrics;
+    Genome w = greedy_weights(g, sg, 0, 1);
+    BOOST_TEST_REQUIRE(!w.empty());
+    auto folded = folded_groups(g, w);
+    NetMetrics gm = decode(g, folded, 1).metrics;
+    BOOST_TEST_CONTEXT("seed " << seed) {
+      BOOST_TEST(gm.overlapping_pairs == 0);
+      BOOST_TEST(gm.cut_length >= mst.cut_length * (1 - 1e-12));
+      if (mst.overlapping_pairs == 0) {
+        ++free;
+        BOOST_TEST((folded == mst_folded));
+        continue;
+      }
+      ++overlapping;
+      UnfoldOptions o;
+      o.heuristic = UnfoldHeuristic::steepest;
+      o.tries = 1;
+      o.fold_candidates = 0;
+      UnfoldStats st;
+      unfold_convex_mesh(m, o, &st);
+      BOOST_TEST(gm.cut_length < st.result.cut_length);
+      // best with the cut-length objective tries the greedy tree, so it is never longer.
+      UnfoldOptions b;
+      b.objective = UnfoldObjective::cut_length;
+      b.fold_candidates = 0;
+      UnfoldStats bs;
+      unfold_convex_mesh(m, b, &bs);
+      BOOST_TEST(bs.result.overlapping_pairs == 0);
+      BOOST_TEST(bs.result.cut_length <= gm.cut_length * (1 + 1e-9));
+    }
+  }
+  BOOST_TEST(overlapping >= 1);  // the case this is about does occur
+  BOOST_TEST_MESSAGE("minimum-length tree overlapping on " << overlapping << ", overlap-free on " << free);
+}
+
+BOOST_AUTO_TEST_CASE(greedy_heuristic_by_name) {
+  BOOST_TEST((parse_unfold_heuristic("greedy") == UnfoldHeuristic::greedy));
+  BOOST_TEST(to_string(UnfoldHeuristic::greedy) == "greedy");
+  UnfoldOptions o;
+  o.heuristic = UnfoldHeuristic::greedy;
+  o.objective = UnfoldObjective::cut_length;
+  UnfoldStats st;
+  Net net = unfold_convex_mesh(icosahedron(), o, &st);
+  BOOST_TEST(st.heuristic == "greedy");
+  BOOST_TEST(check_net(net).ok(), check_net(net).problem);
+}
