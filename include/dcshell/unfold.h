@@ -54,11 +54,11 @@ struct UnfoldOptions {
   /// every rigid piece) or one face of a tree decoded. Each net is first checked with a small
   /// share (`fold_first_work`); a net that runs out of it undecided is re-checked with the rest
   /// only if no net verifies. A count, not a time: the result is the same on every machine.
-  long long fold_work = 2000000;
+  long long fold_work = 500000;
   long long fold_first_work = 40000;
   /// Only nets whose objective is within this fraction of the best overlap-free net's are
   /// checked: a verified fold is worth that much longer cuts (or larger hull), no more.
-  double fold_slack = 0.1;
+  double fold_slack = 0.25;
 };
 
 /// Features of a net, each in model units.
