@@ -317,6 +317,9 @@ class Checker {
   double end_window(int p, int q, PairInfo& pi);
   double plane_window(int p, int q, const PairInfo& pi);
   double plane_advance(int p, int q, const PairInfo& pi);
+  // S = the sum of |fold angles| on the tree path between pieces p and q (bounds their relative
+  // angular speed and acceleration).
+  double path_angle(int p, int q, const PairInfo& pi) const;
   bool cone_arc(int p, const Vec2& at, Arc* arc) const;
   int face_near(int piece, const Vec3& world) const;
   std::vector<Vec3> hull_world(int p, const Rigid& T) const {
@@ -506,15 +509,20 @@ void Checker::classify(int p, int q, PairInfo& pi) {
 // with M = 4 S L(x) as in the end window (s <= 1/(2S)): positive up to the positive root. A
 // corner within tol of the plane needs h' > 0 by a margin over rounding. Corners kept in common
 // on every hinge are excluded (they never move apart).
+double Checker::path_angle(int p, int q, const PairInfo& pi) const {
+  double S = 0;
+  for (int b : pi.up_p) S += std::abs(pc_[b].angle);
+  for (int b : pi.up_q) S += std::abs(pc_[b].angle);
+  return S;
+}
+
 double Checker::plane_advance(int p, int q, const PairInfo& pi) {
   const bool swapped = p > q;
   const std::vector<int>& up_p = swapped ? pi.up_q : pi.up_p;
   const std::vector<int>& up_q = swapped ? pi.up_p : pi.up_q;
-  double S = 0;
-  for (int b : up_p) S += std::abs(pc_[b].angle);
-  for (int b : up_q) S += std::abs(pc_[b].angle);
+  const double S = path_angle(p, q, pi);
   if (S <= 0) return 0;
-  const Piece &P = pc_[p], &Q = pc_[q];
+  const Piece& Q = pc_[q];
   const std::vector<Vec3>&xp = poly_[p].v, &xq = poly_[q].v;
   const int mp = static_cast<int>(xp.size()), mq = static_cast<int>(xq.size());
   if (mp < 3 || mq < 3) return 0;
@@ -631,9 +639,7 @@ double Checker::plane_window(int p, int q, const PairInfo& pi) {
   const bool swapped = p > q;
   const std::vector<int>& up_p = swapped ? pi.up_q : pi.up_p;
   const std::vector<int>& up_q = swapped ? pi.up_p : pi.up_q;
-  double S = 0;
-  for (int b : up_p) S += std::abs(pc_[b].angle);
-  for (int b : up_q) S += std::abs(pc_[b].angle);
+  const double S = path_angle(p, q, pi);
   const Piece &P = pc_[p], &Q = pc_[q];
   const int mp = static_cast<int>(P.hull.size()), mq = static_cast<int>(Q.hull.size());
   std::vector<Vec3> xp(mp), xq(mq), vel(mq);
