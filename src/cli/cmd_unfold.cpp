@@ -166,7 +166,11 @@ int run_unfold(int argc, char** argv) {
       if (!used_names.insert(name).second) name = numbered("shell_", k, "");
       used_names.insert(name);
       s.net.name = name;
-      s.fold = s.stats.fold_checks > 0 ? s.stats.fold : check_folding(s.net);
+      // A net the unfolder did not check (over 5,000 faces, or no candidate checked) gets one
+      // check within the same work budget: undecided past it, never minutes.
+      FoldCheckOptions fo;
+      fo.max_work = std::max<long long>(uo.fold_work, 1);
+      s.fold = s.stats.fold_checks > 0 ? s.stats.fold : check_folding(s.net, fo);
       s.seconds = seconds_since(ts);
       s.net_file = numbered("net_", k, ".obj");
       dir.write(s.net_file, [&](std::ostream& os) { write_net_obj(s.net, os); });
