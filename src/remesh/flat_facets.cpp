@@ -147,9 +147,9 @@ Triangulation fattest_triangulation(const std::vector<Vec>& p, const std::vector
 // Heights over the polygon whose lower hull is the triangulation: a convex piecewise-linear
 // function. In a convex polygon the line through a diagonal meets the polygon only in that
 // diagonal, so max(0, distance to the diagonal's line) folds along the diagonal and nowhere else;
-// a weighted sum of these over the triangulation's diagonals folds exactly along them. Returns heights scaled to [0, 1] and the
-// weakest fold relative to their range: a dome of depth D survives noise e in the corners' heights
-// when 2 e < margin * D.
+// a weighted sum of these over the triangulation's diagonals folds exactly along them. Returns
+// heights scaled to [0, 1] and the weakest fold relative to their range: a dome of depth D
+// survives noise e in the corners' heights when 2 e < margin * D.
 std::vector<double> dome_heights(const Triangulation& t, const std::vector<Eigen::Vector2d>& q, double* margin) {
   const int m = t.m;
   std::vector<double> d(std::size_t(m), 0.0);
@@ -159,7 +159,6 @@ std::vector<double> dome_heights(const Triangulation& t, const std::vector<Eigen
   if (k0 >= 2) stack.push_back({0, k0, m - 1});
   if (m - 1 - k0 >= 2) stack.push_back({k0, m - 1, 0});
   auto cross = [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() * b.y() - a.y() * b.x(); };
-  std::vector<double> folds;  // strength of each fold per unit of height
   while (!stack.empty()) {
     const Item it = stack.back();
     stack.pop_back();
@@ -168,8 +167,8 @@ std::vector<double> dome_heights(const Triangulation& t, const std::vector<Eigen
     const double dk = cross(u, q[k] - a), da = cross(u, q[it.apex] - a);  // opposite sides of the diagonal
     // The hull's orientation test on the four corners sees the fold's volume |ij| dk dl / 6 (per
     // unit height) against noise e moving it by at most e |ij| (dk + dl) / 3: its strength is
-    // dk dl / (dk + dl). Weighting each fold by 1 / strength makes them all equally robust, which
-    // needs the least depth.
+    // dk dl / (dk + dl). Weighting each fold by 1 / strength makes every fold's strength 1, all
+    // equally robust, which needs the least depth.
     const double ak = std::abs(dk), al = std::abs(da);
     const double strength = ak + al > 0 ? ak * al / (ak + al) : 0.0;
     if (!(strength > 0)) {
@@ -178,14 +177,12 @@ std::vector<double> dome_heights(const Triangulation& t, const std::vector<Eigen
     }
     const double sign = dk > 0 ? 1 : -1;
     for (int v = 0; v < m; ++v) d[std::size_t(v)] += std::max(0.0, sign * cross(u, q[v] - a)) / strength;
-    folds.push_back(1.0);
     if (k - it.i >= 2) stack.push_back({it.i, k, it.j});
     if (it.j - k >= 2) stack.push_back({k, it.j, it.i});
   }
   const auto mm = std::minmax_element(d.begin(), d.end());
   const double lo = *mm.first, range = *mm.second - lo;  // values: d changes below
-  *margin = range > 0 ? std::numeric_limits<double>::infinity() : 0.0;
-  for (double strength : folds) *margin = std::min(*margin, strength / range);
+  *margin = range > 0 ? 1.0 / range : 0.0;  // every fold has strength 1
   for (double& h : d) h = range > 0 ? (h - lo) / range : 0.0;
   return d;
 }
