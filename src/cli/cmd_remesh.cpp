@@ -12,6 +12,7 @@
 #include "dcshell/error.h"
 #include "dcshell/json.h"
 #include "dcshell/read_mesh.h"
+#include "dcshell/parallel_for.h"
 #include "dcshell/remesh.h"
 
 namespace po = boost::program_options;
@@ -84,9 +85,9 @@ int run_remesh(int argc, char** argv) {
 
     std::vector<std::pair<std::size_t, std::size_t>> unseparated;
     const auto constraints = neighbour_constraints(shells, &unseparated);
-    std::vector<Mesh> result;
+    std::vector<Mesh> result(shells.size());
     std::vector<RemeshStats> stats(shells.size());
-    for (std::size_t i = 0; i < shells.size(); ++i) result.push_back(remesh_convex_shell(shells[i], constraints[i], ro, &stats[i]));
+    parallel_for(shells.size(), [&](std::size_t i) { result[i] = remesh_convex_shell(shells[i], constraints[i], ro, &stats[i]); });
     const CertificationReport rep = certify(result);
     const double secs = seconds_since(t0);
     if (!rep.certified()) {

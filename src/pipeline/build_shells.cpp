@@ -10,6 +10,7 @@
 #include "dcshell/convex_hull.h"
 #include "dcshell/exact_polytope.h"
 #include "dcshell/overlaps.h"
+#include "dcshell/parallel_for.h"
 #include "dcshell/polytope_clip.h"
 #include "dcshell/union_volume.h"
 
@@ -99,9 +100,13 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     progress("hulls", i, n);
     original[i] = exact_hull(parts[i].points, int(i));
     hull_mesh[i] = convex_hull_mesh(parts[i].points);
-    if (opt.simplify_iterations > 0) hull_mesh[i] = remesh_convex_shell(hull_mesh[i], std::vector<CutPlane>{}, remesh_opt);
-    hull[i] = opt.simplify_iterations > 0 ? exact_hull(mesh_points(hull_mesh[i]), int(i)) : original[i];
   }
+  if (opt.simplify_iterations > 0)
+    parallel_for(n, [&](std::size_t i) {
+      hull_mesh[i] = remesh_convex_shell(hull_mesh[i], std::vector<CutPlane>{}, remesh_opt);
+    });
+  for (std::size_t i = 0; i < n; ++i)
+    hull[i] = opt.simplify_iterations > 0 ? exact_hull(mesh_points(hull_mesh[i]), int(i)) : original[i];
   clock.lap("hulls");
 
   // --- overlaps and nesting
@@ -223,13 +228,15 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     std::vector<Mesh> meshes;
     for (const auto& s : res.shells) meshes.push_back(s.mesh);
     std::vector<ShellConstraints> cons = neighbour_constraints(meshes);
-    for (std::size_t k = 0; k < res.shells.size(); ++k) {
-      progress("remesh", k, res.shells.size());
+    for (std::size_t k = 0; k < res.shells.size(); ++k)
+      for (const auto& c : res.shells[k].cuts) cons[k].cut_planes.push_back(c.plane);
+    progress("remesh", 0, res.shells.size());
+    // Shells are independent once their constraints are fixed: one per core.
+    parallel_for(res.shells.size(), [&](std::size_t k) {
       auto& s = res.shells[k];
-      for (const auto& c : s.cuts) cons[k].cut_planes.push_back(c.plane);
       s.mesh = remesh_convex_shell(s.mesh, cons[k], remesh_opt, &s.remesh);
       s.remeshed = true;
-    }
+    });
   }
   clock.lap("remesh");
 
