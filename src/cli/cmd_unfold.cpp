@@ -15,6 +15,7 @@
 #include "dcshell/fold_check.h"
 #include "dcshell/json.h"
 #include "dcshell/net_sheets.h"
+#include "dcshell/parallel_for.h"
 #include "dcshell/read_mesh.h"
 #include "dcshell/unfold.h"
 #include "dcshell/unfold_ga.h"
@@ -146,8 +147,9 @@ int run_unfold(int argc, char** argv) {
     AtomicDirectory dir(out, vm.count("force") > 0, files);
 
     std::vector<ShellResult> shells(files.size());
-    std::set<std::string> used_names;
-    for (std::size_t k = 0; k < files.size(); ++k) {
+    // Shells are independent: one per core, each writing only its own slot (the output does not
+    // depend on the scheduling; an input error is reported for the lowest failing index).
+    parallel_for(files.size(), [&](std::size_t k) {
       auto& s = shells[k];
       s.input = files[k];
       auto ts = std::chrono::steady_clock::now();
@@ -162,16 +164,20 @@ int run_unfold(int argc, char** argv) {
       } catch (const InputError& e) {
         throw InputError(input_error_message(files[k], 0, e.what()));
       }
-      std::string name = fs::path(files[k]).stem().string();
-      if (!used_names.insert(name).second) name = numbered("shell_", k, "");
-      used_names.insert(name);
-      s.net.name = name;
       // A net the unfolder did not check (over 5,000 faces, or no candidate checked) gets one
       // check within the same work budget: undecided past it, never minutes.
       FoldCheckOptions fo;
       fo.max_work = std::max<long long>(uo.fold_work, 1);
       s.fold = s.stats.fold_checks > 0 ? s.stats.fold : check_folding(s.net, fo);
       s.seconds = seconds_since(ts);
+    });
+    std::set<std::string> used_names;
+    for (std::size_t k = 0; k < files.size(); ++k) {
+      auto& s = shells[k];
+      std::string name = fs::path(files[k]).stem().string();
+      if (!used_names.insert(name).second) name = numbered("shell_", k, "");
+      used_names.insert(name);
+      s.net.name = name;
       s.net_file = numbered("net_", k, ".obj");
       dir.write(s.net_file, [&](std::ostream& os) { write_net_obj(s.net, os); });
       if (!s.stats.convex)
