@@ -1,6 +1,7 @@
 // Private to the remesh module: the small LPs and QPs of the progressive hull and of the
-// constrained smoothing, in three variables. CGAL's QP solver is instantiated only in qp3.cpp
-// (template-heavy); the floating-point solver is in solve3.cpp.
+// constrained smoothing, in three variables, and the separating-plane LP between two neighbours.
+// CGAL's QP solver is instantiated only in qp3.cpp (template-heavy, so every exact program of the
+// module is solved there); the floating-point solver is in solve3.cpp.
 #pragma once
 #include <Eigen/Core>
 #include <cstddef>

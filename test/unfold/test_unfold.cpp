@@ -20,6 +20,13 @@ using namespace dcshell::test;
 
 namespace {
 
+// The net as write_net_obj writes it: equal strings are byte-identical outputs.
+std::string net_obj(const Net& net) {
+  std::ostringstream os;
+  write_net_obj(net, os);
+  return os.str();
+}
+
 // At t = 1 every copy of a shell vertex is back in one place, and the folded net is the shell up
 // to a rigid motion (pairwise distances of the shell vertices agree).
 void check_folds_back(const Net& net) {
@@ -160,9 +167,7 @@ BOOST_AUTO_TEST_CASE(hand_made_overlapping_net_is_detected) {
 
 BOOST_AUTO_TEST_CASE(net_obj_lists_shell_faces_in_order) {
   Net net = unfold_convex_mesh(cube_triangles());
-  std::ostringstream os;
-  write_net_obj(net, os);
-  std::istringstream is(os.str());
+  std::istringstream is(net_obj(net));
   std::vector<Eigen::Vector2d> v;
   std::vector<std::array<int, 3>> f;
   std::string line;
@@ -196,10 +201,7 @@ BOOST_AUTO_TEST_CASE(ga_is_reproducible_and_improves_on_the_first_net) {
   UnfoldStats s1, s2;
   Mesh m = icosahedron();
   Net a = unfold_ga(m, o, ga, &s1), b = unfold_ga(m, o, ga, &s2);
-  std::ostringstream oa, ob;
-  write_net_obj(a, oa);
-  write_net_obj(b, ob);
-  BOOST_TEST(oa.str() == ob.str());
+  BOOST_TEST(net_obj(a) == net_obj(b));
   BOOST_TEST(s1.result.overlapping_pairs == 0);
   BOOST_TEST(s1.result.hull_area <= s1.first.hull_area);
   check_good_net(a, "ga icosahedron");
@@ -248,10 +250,7 @@ BOOST_AUTO_TEST_CASE(ga_is_never_worse_than_its_seeds_and_reproducible) {
         UnfoldStats sb, s1, s2;
         unfold_convex_mesh(mesh, o, &sb);
         Net a = unfold_ga(mesh, o, ga, &s1), b = unfold_ga(mesh, o, ga, &s2);
-        std::ostringstream oa, ob;
-        write_net_obj(a, oa);
-        write_net_obj(b, ob);
-        BOOST_TEST(oa.str() == ob.str());
+        BOOST_TEST(net_obj(a) == net_obj(b));
         BOOST_TEST(s1.result.overlapping_pairs == 0);
         check_good_net(a, name);
         // Never worse than the default search (its seeds) nor than the first net.
