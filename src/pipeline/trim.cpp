@@ -1,8 +1,55 @@
 #include "dcshell/trim.h"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <unordered_map>
+
 #include "dcshell/convex_hull.h"
 
 namespace dcshell {
+
+namespace {
+
+// Keeps the first of every group of points closer than `delta` to an already kept one (index
+// order, so deterministic). The hull of a subset lies inside the hull of the set, so nothing
+// the caller proved about the points' hull is lost; what goes are the ulp-long edges and
+// needle faces that rounding leaves where a cut passes next to a hull vertex.
+std::vector<Point3> merge_close_points(const std::vector<Point3>& pts, double delta, std::size_t* merged) {
+  if (!(delta > 0)) return pts;
+  auto cell = [&](double x) { return static_cast<std::int64_t>(std::floor(x / delta)); };
+  auto key = [](std::int64_t i, std::int64_t j, std::int64_t k) {
+    return (static_cast<std::uint64_t>(i) * 73856093ULL) ^ (static_cast<std::uint64_t>(j) * 19349663ULL) ^
+           (static_cast<std::uint64_t>(k) * 83492791ULL);
+  };
+  std::unordered_map<std::uint64_t, std::vector<std::size_t>> grid;
+  std::vector<Point3> out;
+  out.reserve(pts.size());
+  for (const auto& q : pts) {
+    const std::int64_t i = cell(q.x()), j = cell(q.y()), k = cell(q.z());
+    bool close = false;
+    for (std::int64_t di = -1; di <= 1 && !close; ++di)
+      for (std::int64_t dj = -1; dj <= 1 && !close; ++dj)
+        for (std::int64_t dk = -1; dk <= 1 && !close; ++dk) {
+          auto it = grid.find(key(i + di, j + dj, k + dk));
+          if (it == grid.end()) continue;
+          for (std::size_t o : it->second)
+            if (CGAL::squared_distance(out[o], q) < delta * delta) {
+              close = true;
+              break;
+            }
+        }
+    if (close) {
+      ++*merged;
+      continue;
+    }
+    grid[key(i, j, k)].push_back(out.size());
+    out.push_back(q);
+  }
+  return out;
+}
+
+}  // namespace
 
 ExactPolytope trim_exact(const ExactPolytope& hull, const std::vector<CutPlane>& keep_below) {
   ExactPolytope p = hull;
@@ -54,7 +101,12 @@ Mesh trim_shell(const ExactPolytope& hull, const std::vector<CutPlane>& keep_bel
     else
       ++st.dropped_vertices;
   }
-  return convex_hull_mesh(kept);
+  if (kept.size() < 4) return convex_hull_mesh(kept);
+  double lo[3] = {kept[0].x(), kept[0].y(), kept[0].z()}, hi[3] = {lo[0], lo[1], lo[2]};
+  for (const auto& q : kept)
+    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], q[d]), hi[d] = std::max(hi[d], q[d]);
+  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  return convex_hull_mesh(merge_close_points(kept, kMergeDistance * diag, &st.merged_vertices));
 }
 
 }  // namespace dcshell

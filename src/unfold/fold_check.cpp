@@ -278,6 +278,7 @@ struct PairInfo {
   Vec2 cone_at = Vec2::Zero();
   std::vector<int> up_p, up_q;  // pieces whose hinges lie between each piece and the common ancestor
   std::vector<int> fixed;       // shell vertices the two pieces keep in common along the path
+  std::vector<Vec2> fixed_at;   // and their net positions
   bool shares = false;          // the pieces share a shell vertex (they touch in the folded shell)
   double safe_until = 0;        // proved disjoint from the state it was last examined at up to here
   int flat_apart = -1;          // faces do not overlap in the flat net (1), do (0), not tested yet (-1)
@@ -320,7 +321,20 @@ class Checker {
   // S = the sum of |fold angles| on the tree path between pieces p and q (bounds their relative
   // angular speed and acceleration).
   double path_angle(int p, int q, const PairInfo& pi) const;
+  bool near_fixed(const Piece& Q, int i, const PairInfo& pi, double S) const;
   bool cone_arc(int p, const Vec2& at, Arc* arc) const;
+  // The hull corner after corner i of piece p in direction step (+1 / -1) that is farther than
+  // the contact tolerance from it: a hull side of 1e-11 has a direction made of rounding noise,
+  // and what a wedge or plane built past it leaves out lies within that tolerance.
+  int hull_step(int p, int i, int step) const {
+    const auto& H = pc_[p].hull;
+    const int m = static_cast<int>(H.size());
+    for (int k = 1; k < m; ++k) {
+      int j = ((i + step * k) % m + m) % m;
+      if ((H[j] - H[i]).norm() > tol_) return j;
+    }
+    return ((i + step) % m + m) % m;
+  }
   int face_near(int piece, const Vec3& world) const;
   std::vector<Vec3> hull_world(int p, const Rigid& T) const {
     std::vector<Vec3> out;
@@ -394,11 +408,18 @@ PairInfo& Checker::info(int p, int q) {
 bool Checker::cone_arc(int p, const Vec2& at, Arc* arc) const {
   const auto& H = pc_[p].hull;
   const int m = static_cast<int>(H.size());
-  if (m < 3) return false;
+  if (m < 2) return false;
   double eps = 1e-10 * scale_;
+  if (m == 2) {  // a sliver narrower than the hull's tolerance: its wedge at an end is one ray
+    for (int i = 0; i < 2; ++i)
+      if ((H[i] - at).norm() <= eps) {
+        arc->a = arc->b = lift((H[1 - i] - H[i]).normalized()), arc->n = Vec3::UnitZ(), arc->alpha = 0;
+        return true;
+      }
+  }
   for (int i = 0; i < m; ++i)
     if ((H[i] - at).norm() <= eps) {
-      Vec2 e1 = (H[(i + 1) % m] - H[i]).normalized(), e2 = (H[(i + m - 1) % m] - H[i]).normalized();
+      Vec2 e1 = (H[hull_step(p, i, 1)] - H[i]).normalized(), e2 = (H[hull_step(p, i, -1)] - H[i]).normalized();
       arc->a = lift(e1), arc->b = lift(e2), arc->n = Vec3::UnitZ();
       arc->alpha = std::atan2(cross2(e1, e2), e1.dot(e2));
       return arc->alpha > 0;
@@ -445,7 +466,7 @@ void Checker::classify(int p, int q, PairInfo& pi) {
   }
   const double eps = 1e-10 * scale_;
   const auto &A = pc_[p].corners, &B = pc_[q].corners;
-  std::vector<Vec2> fixed_at;
+  std::vector<Vec2>& fixed_at = pi.fixed_at;
   for (std::size_t i = 0, j = 0; i < A.size() && j < B.size();) {
     if (A[i].first < B[j].first) ++i;
     else if (B[j].first < A[i].first) ++j;
@@ -516,6 +537,16 @@ double Checker::path_angle(int p, int q, const PairInfo& pi) const {
   return S;
 }
 
+// Hull corner i of Q counts as kept in common when it is a fixed corner, or lies so close to one
+// (a sliver's corners 1e-11 apart merge into one hull corner) that its whole travel relative to
+// the other piece, at most S x that distance, stays within the contact tolerance.
+bool Checker::near_fixed(const Piece& Q, int i, const PairInfo& pi, double S) const {
+  if (std::find(pi.fixed.begin(), pi.fixed.end(), Q.hull_vertex[i]) != pi.fixed.end()) return true;
+  for (const Vec2& x : pi.fixed_at)
+    if ((Q.hull[i] - x).norm() * std::max(S, 1.0) <= tol_) return true;
+  return false;
+}
+
 double Checker::plane_advance(int p, int q, const PairInfo& pi) {
   const bool swapped = p > q;
   const std::vector<int>& up_p = swapped ? pi.up_q : pi.up_p;
@@ -525,14 +556,14 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
   const Piece& Q = pc_[q];
   const std::vector<Vec3>&xp = poly_[p].v, &xq = poly_[q].v;
   const int mp = static_cast<int>(xp.size()), mq = static_cast<int>(xq.size());
-  if (mp < 3 || mq < 3) return 0;
+  if (mp < 2 || mq < 2) return 0;  // a sliver narrower than the hull's tolerance is a segment
   const Vec3 np = poly_[p].n;
   std::vector<Vec3> vel(mq);
   std::vector<double> L(mq, 0.0);
   std::vector<char> fixed(mq, 0);
   for (int i = 0; i < mq; ++i) {
     const Vec3& x = xq[i];
-    fixed[i] = std::find(pi.fixed.begin(), pi.fixed.end(), Q.hull_vertex[i]) != pi.fixed.end();
+    fixed[i] = near_fixed(Q, i, pi, S);
     vel[i].setZero();
     for (const auto* side : {&up_q, &up_p})
       for (int b : *side) {
@@ -547,6 +578,9 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
     Vec3 m = (xp[(i + 1) % mp] - xp[i]).cross(np);  // outward: hull counter-clockwise about n_p
     if (m.norm() > 0) dirs.push_back(m.normalized());
   }
+  if (mp == 2)  // a segment's ends are supported by its own direction
+    for (const Vec3& m : {Vec3(xp[1] - xp[0]), Vec3(xp[0] - xp[1])})
+      if (m.norm() > 0) dirs.push_back(m.normalized());
   for (int i = 0; i < mq; ++i) {
     Vec3 m = (xq[(i + 1) % mq] - xq[i]).cross(poly_[q].n);
     m -= m.dot(np) * np;  // q's inward edge normal, projected into p's plane
@@ -648,7 +682,7 @@ double Checker::plane_window(int p, int q, const PairInfo& pi) {
   for (int i = 0; i < mp; ++i) xp[i] = T1[p](lift(P.hull[i]));
   for (int i = 0; i < mq; ++i) {
     const Vec3 x = xq[i] = T1[q](lift(Q.hull[i]));
-    fixed[i] = std::find(pi.fixed.begin(), pi.fixed.end(), Q.hull_vertex[i]) != pi.fixed.end();
+    fixed[i] = near_fixed(Q, i, pi, S);
     // Velocity of x relative to p (world frame at t = 1): joints towards q count +, towards p -.
     vel[i].setZero();
     for (const auto* side : {&up_q, &up_p})
@@ -689,9 +723,12 @@ double Checker::plane_window(int p, int q, const PairInfo& pi) {
     for (int j = 0; j < mq && !shared; ++j) shared = Q.hull_vertex[j] == v;
     if (!shared) continue;
     // Outward normals (in p's plane) of the hull edges at corner i, and their bisector.
-    Vec3 e_next = xp[(i + 1) % mp] - xp[i], e_prev = xp[i] - xp[(i + mp - 1) % mp];
+    Vec3 e_next = xp[hull_step(p, i, 1)] - xp[i], e_prev = xp[i] - xp[hull_step(p, i, -1)];
     Vec3 m1 = e_next.cross(-inward).normalized(), m0 = e_prev.cross(-inward).normalized();
-    for (const Vec3& m : {m0, m1, Vec3((m0 + m1).normalized())})
+    std::vector<Vec3> ms{m0, m1};
+    if ((m0 + m1).norm() > 1e-12) ms.push_back((m0 + m1).normalized());
+    else ms.push_back(e_next.normalized());  // a two-corner hull (sliver): tilt about its end too
+    for (const Vec3& m : ms)
       for (int k = 0; k < 16; ++k) {
         double phi = k * M_PI / 16;
         best = std::max(best, window_for(std::cos(phi) * inward + std::sin(phi) * m, xp[i]));

@@ -195,8 +195,14 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
             if (g.F[p][i] == v) return P[p][i];
           return Vec2(0, 0);
         };
-        Vec2 pa = pos_in_parent(a), dp = pos_in_parent(b) - pa;
-        Vec2 qa = g.chart[f][j], dq = g.chart[f][(j + 1) % 3] - qa;
+        // The edge's direction from its 3D vector (exact for nearby doubles), not from the
+        // difference of two chart positions: those carry absolute rounding, which on a 1e-11
+        // sliver side would turn the whole facet by 1e-4 rad.
+        const Eigen::Vector3d ab = g.V[b] - g.V[a];
+        const auto& fp = g.facet_frame[g.facet[p]];
+        const auto& fk = g.facet_frame[k];
+        Vec2 pa = pos_in_parent(a), dp = R[g.facet[p]] * Vec2(ab.dot(fp[1]), ab.dot(fp[2]));
+        Vec2 qa = g.chart[f][j], dq(ab.dot(fk[1]), ab.dot(fk[2]));
         double c = dq.dot(dp), s = dq.x() * dp.y() - dq.y() * dp.x(), n = std::hypot(c, s);
         c /= n, s /= n;
         R[k] << c, -s, s, c;

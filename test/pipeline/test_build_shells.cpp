@@ -129,6 +129,34 @@ BOOST_AUTO_TEST_CASE(rounding_is_repaired_exactly) {
   BOOST_TEST(r.certified());
 }
 
+BOOST_AUTO_TEST_CASE(a_cut_next_to_a_hull_vertex_leaves_no_micro_edge) {
+  // A plane that shaves 1e-12 off a cube's corner: exactly, the corner becomes a triangle with
+  // 1.4e-12 sides (and its neighbours needles); rounded, those vertices are ulps apart. They are
+  // merged (the hull of the kept points lies inside), so no edge is shorter than kMergeDistance
+  // of the shell's size, and the shell is still exactly inside the cut and certified against
+  // the piece beyond it.
+  ExactPolytope cube = exact_hull(box(0, 0, 0, 1, 1, 1));
+  CutPlane p{Eigen::Vector3d(1, 1, 1).normalized(), 3 / std::sqrt(3.0) - 1e-12};
+  TrimStats st;
+  Mesh below = trim_shell(cube, {p}, &st);
+  BOOST_REQUIRE(below.number_of_faces() > 0);
+  BOOST_TEST(st.merged_vertices >= 1u);
+  BOOST_TEST(below.number_of_vertices() <= 8u);
+  double shortest = 1e300;
+  for (auto e : below.edges())
+    shortest = std::min(shortest, std::sqrt(CGAL::squared_distance(below.point(below.vertex(e, 0)), below.point(below.vertex(e, 1)))));
+  BOOST_TEST(shortest >= kMergeDistance * std::sqrt(3.0));
+  auto h = exact_plane(p);
+  for (auto v : below.vertices()) {
+    const Point3& q = below.point(v);
+    BOOST_TEST((h.oriented_side(Epeck::Point_3(q.x(), q.y(), q.z())) != CGAL::ON_POSITIVE_SIDE));
+  }
+  // The exact polytope has the tiny triangle: 10 vertices.
+  BOOST_TEST(trim_exact(cube, {p}).vertices.size() == 10u);
+  Mesh above = trim_shell(cube, {p.flipped()});
+  BOOST_TEST(certify({below, above}).certified());
+}
+
 BOOST_AUTO_TEST_CASE(same_result_whatever_ran_before_in_the_process) {
   // Results must depend on the input and options only, not on the heap state left by earlier
   // runs (hull codes that order work by address made this fail once).

@@ -7,6 +7,7 @@
 #include <CGAL/intersections.h>
 
 #include "dcshell/build_shells.h"
+#include "dcshell/convex_hull.h"
 #include "dcshell/fold_check.h"
 #include "dcshell/net_overlap.h"
 #include "dcshell/read_mesh.h"
@@ -236,4 +237,50 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_every_cow_dc_shell_net) {
     verified += again.verified;
   }
   BOOST_TEST(verified == 16);
+}
+
+BOOST_AUTO_TEST_CASE(fold_check_proves_nets_with_sliver_faces) {
+  // A cube with two corners cut off by h: each corner becomes a triangle with sides of h sqrt 2,
+  // its neighbours get sides that short and needle triangles. A net folding across such a side
+  // used to turn its facet by the side's rounding noise, and a needle's hull, narrower than the
+  // hull tolerance, has only two corners: the check could neither place a cone at it nor a plane
+  // against it.
+  int verified = 0, nets = 0;
+  for (double h : {3e-11, 1e-12, 1e-13, 1e-14}) {
+    std::vector<Point3> pts;
+    for (int i = 0; i < 8; ++i) {
+      double c[3] = {double(i & 1), double((i >> 1) & 1), double((i >> 2) & 1)};
+      bool cut = (c[0] == 1 && c[1] == 1 && c[2] == 1) || (c[0] == 0 && c[1] == 0 && c[2] == 1);
+      if (!cut) {
+        pts.emplace_back(c[0], c[1], c[2]);
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) {
+        double q[3] = {c[0], c[1], c[2]};
+        q[k] += q[k] == 1 ? -h : h;
+        pts.emplace_back(q[0], q[1], q[2]);
+      }
+    }
+    Mesh mesh = convex_hull_mesh(pts);
+    BOOST_TEST_REQUIRE(mesh.number_of_vertices() == 12u);
+    for (auto heuristic : {UnfoldHeuristic::steepest, UnfoldHeuristic::flat, UnfoldHeuristic::min_perimeter,
+                           UnfoldHeuristic::random}) {
+      UnfoldOptions o;
+      o.heuristic = heuristic;
+      o.fold_candidates = 0;  // the heuristic's own best net, whatever its fold
+      UnfoldStats st;
+      Net net = unfold_convex_mesh(mesh, o, &st);
+      BOOST_TEST(st.result.overlapping_pairs == 0);
+      auto r = check_folding(net);
+      // What may remain is the cube's own weak point (doc/fold_check.md): a cut edge closing
+      // with a symmetric twist, which no plane proves to first order; the uncut cube's random
+      // net stops there too, at the same t.
+      BOOST_TEST((r.verified || (r.t > 0.9999 && r.message.find("touch in the folded shell") != std::string::npos)),
+                 "h " << h << " " << to_string(heuristic) << ": " << r.message);
+      verified += r.verified;
+      ++nets;
+    }
+  }
+  BOOST_TEST(nets == 16);
+  BOOST_TEST(verified >= 13);  // 8 before slivers were handled
 }
