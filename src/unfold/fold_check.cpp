@@ -23,6 +23,18 @@ using Vec2 = Eigen::Vector2d;
 using Vec3 = Eigen::Vector3d;
 constexpr double kInf = std::numeric_limits<double>::infinity();
 
+// (cos, sin) of k pi / 16 for k = 0..16, ends exact: the tilt grid of the separating planes,
+// computed once (the planes are tried for every touching pair at every step).
+struct TiltTable {
+  double v[17][2];
+  TiltTable() {
+    for (int k = 0; k <= 16; ++k) v[k][0] = std::cos(k * M_PI / 16), v[k][1] = std::sin(k * M_PI / 16);
+    v[0][1] = v[16][1] = 0, v[16][0] = -1;
+  }
+  const double* operator[](int k) const { return v[k]; }
+};
+const TiltTable kTilt;
+
 // Folds whose angle is below this move nothing visible: the faces they join are one rigid piece
 // (the motion itself treats them as rigid, so the piece is exactly planar along the path).
 constexpr double kRigidAngle = 1e-4;
@@ -594,7 +606,7 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
     for (const auto& y : xp) c = std::max(c, m.dot(y));
     for (int i = 0; i < mq; ++i) hm[i] = m.dot(xq[i]) - c, dm[i] = m.dot(vel[i]);
     for (int k = 0; k <= 16; ++k) {
-      const double phi = k * M_PI / 16, sn = k == 0 || k == 16 ? 0.0 : std::sin(phi), cs = k == 16 ? -1.0 : std::cos(phi);
+      const double sn = kTilt[k][1], cs = kTilt[k][0];
       double window = 0.5 / S;
       for (int i = 0; i < mq && window > best; ++i) {
         if (fixed[i]) continue;
@@ -730,8 +742,7 @@ double Checker::plane_window(int p, int q, const PairInfo& pi) {
     else ms.push_back(e_next.normalized());  // a two-corner hull (sliver): tilt about its end too
     for (const Vec3& m : ms)
       for (int k = 0; k < 16; ++k) {
-        double phi = k * M_PI / 16;
-        best = std::max(best, window_for(std::cos(phi) * inward + std::sin(phi) * m, xp[i]));
+        best = std::max(best, window_for(kTilt[k][0] * inward + kTilt[k][1] * m, xp[i]));
       }
   }
   return best;

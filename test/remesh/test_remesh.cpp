@@ -214,7 +214,7 @@ BOOST_AUTO_TEST_CASE(flat_regions_collapse_for_free_under_tight_planes) {
   }
   SimplifyStats sst;
   Mesh m = cube;
-  simplify_progressive_hull(m, ShellConstraints{faces, {}}, SimplifyOptions{}, &sst);
+  simplify_progressive_hull(m, ShellConstraints{faces, {}, {}}, SimplifyOptions{}, &sst);
   BOOST_CHECK(check_convexity(m).ok());
   BOOST_CHECK(inside_all(m, faces));
   BOOST_CHECK_EQUAL(m.number_of_vertices(), 8u);  // only the corners are left
@@ -239,7 +239,7 @@ BOOST_AUTO_TEST_CASE(every_pass_keeps_constraints_exactly) {
   Mesh m = convex_hull_mesh(pts);
   const std::vector<Point3> original = mesh_points(m);
   const double v0 = volume(m);
-  const ShellConstraints c{{cut}, {}};
+  const ShellConstraints c{{cut}, {}, {}};
   std::size_t collapses = 0, moves = 0;
   for (int it = 1; it <= 3; ++it) {
     SimplifyOptions so;
@@ -378,7 +378,7 @@ BOOST_AUTO_TEST_CASE(cut_face_gets_its_fattest_triangulation) {
   BOOST_REQUIRE(check_convexity(shell).ok());
   const double before = facet_fatness(shell, cut, 1e-9);
   FlatFacetStats st;
-  const Mesh out = fatten_flat_facets(shell, ShellConstraints{{cut}, {}}, FlatFacetOptions{}, &st);
+  const Mesh out = fatten_flat_facets(shell, ShellConstraints{{cut}, {}, {}}, FlatFacetOptions{}, &st);
   const double after = facet_fatness(out, cut, 1e-7);
   BOOST_TEST_MESSAGE("cut face fatness " << before << " -> " << after << ", whole " << st.fatness_before << " -> "
                                          << st.fatness_after << ", sank " << st.max_inward);
