@@ -27,8 +27,9 @@ constexpr double kMergeDistance = 1e-7;
 /// or outside the hull (decided exactly) is moved toward the shell's interior by the smallest
 /// step that restores every constraint; the result is the convex hull (exact predicates) of
 /// those points, less those within kMergeDistance of another. So the written shell is exactly
-/// convex and exactly inside each of its halfspaces, hence interior-disjoint from every neighbour separated by a plane or by the hulls
-/// themselves. Returns an empty mesh when nothing of positive volume remains.
+/// convex and exactly inside each of its halfspaces, hence interior-disjoint from every
+/// neighbour separated by a plane or by the hulls themselves. Returns an empty mesh when nothing
+/// of positive volume remains.
 Mesh trim_shell(const ExactPolytope& hull, const std::vector<CutPlane>& keep_below, TrimStats* stats = nullptr);
 
 /// The exact trimmed polytope (before rounding).
