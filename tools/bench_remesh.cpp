@@ -143,6 +143,7 @@ int main(int argc, char** argv) {
     std::cerr << "bench_remesh: no " << root << " (shared data absent); nothing to do\n";
     return 0;
   }
+  if (!svg_dir.empty()) fs::create_directories(svg_dir);
   std::vector<fs::path> models;
   for (auto& e : fs::directory_iterator(root))
     if (e.is_directory() && (only.empty() || e.path().filename() == only)) models.push_back(e.path());
