@@ -479,6 +479,7 @@ void Checker::classify(int p, int q, PairInfo& pi) {
   const double eps = 1e-10 * scale_;
   const auto &A = pc_[p].corners, &B = pc_[q].corners;
   std::vector<Vec2>& fixed_at = pi.fixed_at;
+  std::vector<Vec2> strict_at;  // the fixed corners that lie on every hinge line exactly
   for (std::size_t i = 0, j = 0; i < A.size() && j < B.size();) {
     if (A[i].first < B[j].first) ++i;
     else if (B[j].first < A[i].first) ++j;
@@ -488,24 +489,34 @@ void Checker::classify(int p, int q, PairInfo& pi) {
         for (std::size_t j2 = j; j2 < B.size() && B[j2].first == v; ++j2) {
           const Vec2& x = A[i2].second;
           if ((x - B[j2].second).norm() > eps) continue;
+          // On every hinge line between the pieces; or so near them that its two copies never
+          // part by more than the contact tolerance: a copy's distance to a hinge's axis is the
+          // same in every state, so its travel is at most sum |angle| x that distance (a corner
+          // of a glued chain that rounding bends by 1e-8).
           bool on_all = true;
+          double travel = 0;
           for (const auto* side : {&pi.up_p, &pi.up_q})
             for (int b : *side) {
               Vec2 a2 = pc_[b].hinge_a.head<2>(), u2 = pc_[b].hinge_u.head<2>();
-              on_all = on_all && std::abs(cross2(u2, x - a2)) <= eps;
+              const double d = std::abs(cross2(u2, x - a2));
+              on_all = on_all && d <= eps;
+              travel += std::abs(pc_[b].angle) * d;
             }
-          if (on_all && (pi.fixed.empty() || pi.fixed.back() != v)) pi.fixed.push_back(v), fixed_at.push_back(x);
+          if ((on_all || travel <= tol_) && (pi.fixed.empty() || pi.fixed.back() != v)) {
+            pi.fixed.push_back(v), fixed_at.push_back(x);
+            if (on_all) strict_at.push_back(x);
+          }
         }
       while (i < A.size() && A[i].first == v) ++i;
       while (j < B.size() && B[j].first == v) ++j;
     }
   }
-  if (fixed_at.size() >= 2) {
+  if (strict_at.size() >= 2) {
     // Both pieces turn about the line through two common fixed corners (all hinges between them
     // lie on it). Planar pieces on opposite closed sides of a common line meet only on it while
     // their relative turn stays below pi; on the line nothing moves, so they meet there as in the
     // flat net (where they only touch).
-    Vec2 o = fixed_at[0], d = (fixed_at[1] - fixed_at[0]).normalized();
+    Vec2 o = strict_at[0], d = (strict_at[1] - strict_at[0]).normalized();
     double lo_p = kInf, hi_p = -kInf, lo_q = kInf, hi_q = -kInf;
     for (auto& h : pc_[p].hull) lo_p = std::min(lo_p, cross2(d, h - o)), hi_p = std::max(hi_p, cross2(d, h - o));
     for (auto& h : pc_[q].hull) lo_q = std::min(lo_q, cross2(d, h - o)), hi_q = std::max(hi_q, cross2(d, h - o));
@@ -519,7 +530,7 @@ void Checker::classify(int p, int q, PairInfo& pi) {
       return;
     }
   }
-  if (fixed_at.size() == 1) {
+  if (fixed_at.size() == 1 && strict_at.size() == 1) {  // the cone needs the exact apex
     Arc arc;
     if (cone_arc(p, fixed_at[0], &arc) && cone_arc(q, fixed_at[0], &arc)) {
       pi.kind = PairKind::cone;

@@ -284,3 +284,25 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_nets_with_sliver_faces) {
   BOOST_TEST(nets == 16);
   BOOST_TEST(verified >= 13);  // 8 before slivers were handled
 }
+
+BOOST_AUTO_TEST_CASE(fold_check_proves_every_squirtle_dc_shell_net) {
+  // Squirtle's shell 1: sibling pieces touch in the flat net at a corner of their glued chains
+  // that lies 1.4e-8 off one hinge line (tolerance 1e-8): not on the hinges, so neither fixed
+  // nor separable by a plane to first order, but its two copies never part by more than
+  // 0.6 x 1.4e-8 (its distance to each axis is the same in every state). Counted as fixed, the
+  // shell's nets verify; before, all 7 but that one did.
+  if (!have_shared_data()) {
+    BOOST_TEST_MESSAGE("shared data absent: skipped");
+    return;
+  }
+  std::vector<std::string> warnings;
+  auto parts = load_parts({shared_data() + "/composite/Squirtle"}, warnings);
+  ShellResult sr = build_shells(parts, ShellOptions{});
+  BOOST_TEST_REQUIRE(sr.shells.size() == 7u);
+  for (std::size_t i = 0; i < sr.shells.size(); ++i) {
+    UnfoldStats st;
+    unfold_convex_mesh(sr.shells[i].mesh, {}, &st);
+    BOOST_TEST(st.result.overlapping_pairs == 0);
+    BOOST_TEST(st.fold.verified, "shell " << i << ": " << st.fold.message);
+  }
+}
