@@ -72,6 +72,27 @@ double flaps_distance(const Net& net, double t) {
   return std::sqrt(d2);
 }
 
+// Every DC-shell of a shared composite model (default pipeline) unfolds into an overlap-free net
+// whose folding is verified, and the returned net checked on its own gets the same proof.
+// Skipped without the shared data.
+void expect_every_dc_shell_net_verified(const std::string& model, std::size_t shells) {
+  if (!have_shared_data()) {
+    BOOST_TEST_MESSAGE("shared data absent: skipped");
+    return;
+  }
+  std::vector<std::string> warnings;
+  auto parts = load_parts({shared_data() + "/composite/" + model}, warnings);
+  ShellResult sr = build_shells(parts, ShellOptions{});
+  BOOST_TEST_REQUIRE(sr.shells.size() == shells);
+  for (std::size_t i = 0; i < sr.shells.size(); ++i) {
+    UnfoldStats st;
+    Net net = unfold_convex_mesh(sr.shells[i].mesh, {}, &st);
+    BOOST_TEST(st.result.overlapping_pairs == 0);
+    BOOST_TEST(st.fold.verified, model << " shell " << i << ": " << st.fold.message);
+    BOOST_TEST(check_folding(net).verified == st.fold.verified);
+  }
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(fold_check_reports_the_first_contact_of_crossing_flaps) {
@@ -218,25 +239,7 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_every_cow_dc_shell_net) {
   // hinge lines, and corners 1e-7 of the model apart stay that close along the whole path. Plane
   // advancement (first-order separation by a plane fixed to one piece) proves these; distance
   // stepping alone verified 8 of the 16 nets (stopping at t = 0 or crawling to the step limit).
-  if (!have_shared_data()) {
-    BOOST_TEST_MESSAGE("shared data absent: skipped");
-    return;
-  }
-  std::vector<std::string> warnings;
-  auto parts = load_parts({shared_data() + "/composite/Cow"}, warnings);
-  ShellResult sr = build_shells(parts, ShellOptions{});
-  BOOST_TEST_REQUIRE(sr.shells.size() == 16u);
-  int verified = 0;
-  for (std::size_t i = 0; i < sr.shells.size(); ++i) {
-    UnfoldStats st;
-    Net net = unfold_convex_mesh(sr.shells[i].mesh, {}, &st);
-    BOOST_TEST(st.result.overlapping_pairs == 0);
-    BOOST_TEST(st.fold.verified, "shell " << i << ": " << st.fold.message);
-    auto again = check_folding(net);  // the returned net, checked on its own: same proof
-    BOOST_TEST(again.verified == st.fold.verified);
-    verified += again.verified;
-  }
-  BOOST_TEST(verified == 16);
+  expect_every_dc_shell_net_verified("Cow", 16);
 }
 
 BOOST_AUTO_TEST_CASE(fold_check_proves_nets_with_sliver_faces) {
@@ -291,18 +294,5 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_every_squirtle_dc_shell_net) {
   // nor separable by a plane to first order, but its two copies never part by more than
   // 0.6 x 1.4e-8 (its distance to each axis is the same in every state). Counted as fixed, the
   // shell's nets verify; before, all 7 but that one did.
-  if (!have_shared_data()) {
-    BOOST_TEST_MESSAGE("shared data absent: skipped");
-    return;
-  }
-  std::vector<std::string> warnings;
-  auto parts = load_parts({shared_data() + "/composite/Squirtle"}, warnings);
-  ShellResult sr = build_shells(parts, ShellOptions{});
-  BOOST_TEST_REQUIRE(sr.shells.size() == 7u);
-  for (std::size_t i = 0; i < sr.shells.size(); ++i) {
-    UnfoldStats st;
-    unfold_convex_mesh(sr.shells[i].mesh, {}, &st);
-    BOOST_TEST(st.result.overlapping_pairs == 0);
-    BOOST_TEST(st.fold.verified, "shell " << i << ": " << st.fold.message);
-  }
+  expect_every_dc_shell_net_verified("Squirtle", 7);
 }
