@@ -72,6 +72,27 @@ Mesh subdivided_cube(int k) {
   return convex_hull_mesh(pts);
 }
 
+// The two halves (x <= 0, x > 0) of a skinny ellipsoid's sample, both holding the same flat
+// polygon of `sides` corners on x = 0 (semi-axes 0.99 and `z`), and their hulls: neighbours
+// sharing a cut face.
+struct Halves {
+  std::vector<Point3> left, right;
+  std::vector<Mesh> shells;
+};
+Halves halves_sharing_a_polygon(int sides, double z) {
+  Halves h;
+  auto& left = h.left;
+  auto& right = h.right;
+  for (const auto& p : ellipsoid_points(100, 6, 1, 1.2, 5)) (p.x() <= 0 ? left : right).push_back(p);
+  for (int i = 0; i < sides; ++i) {
+    const Point3 q(0, 0.99 * std::cos(2 * M_PI * i / sides), z * std::sin(2 * M_PI * i / sides));
+    left.push_back(q);
+    right.push_back(q);
+  }
+  h.shells = {convex_hull_mesh(left), convex_hull_mesh(right)};
+  return h;
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_SUITE(fatness)
@@ -265,16 +286,10 @@ BOOST_AUTO_TEST_CASE(every_pass_keeps_constraints_exactly) {
 BOOST_AUTO_TEST_CASE(neighbours_sharing_a_cut_face_stay_disjoint) {
   // Two halves of a skinny ellipsoid's hull split at x = 0; both hold the same points exactly on
   // the plane, so they share the cut face.
-  std::vector<Point3> left, right;
-  for (const auto& p : ellipsoid_points(100, 6, 1, 1.2, 5)) (p.x() <= 0 ? left : right).push_back(p);
-  for (int i = 0; i < 12; ++i) {
-    // A flat 12-gon: its triangles are skinny whatever the triangulation, so an unconstrained
-    // remesh collapses them outward, into the neighbour.
-    const Point3 q(0, 0.99 * std::cos(2 * M_PI * i / 12), 0.15 * std::sin(2 * M_PI * i / 12));
-    left.push_back(q);
-    right.push_back(q);
-  }
-  const std::vector<Mesh> shells{convex_hull_mesh(left), convex_hull_mesh(right)};
+  // A flat 12-gon: its triangles are skinny whatever the triangulation, so an unconstrained
+  // remesh collapses them outward, into the neighbour.
+  const Halves halves = halves_sharing_a_polygon(12, 0.15);
+  const std::vector<Mesh>& shells = halves.shells;
   BOOST_REQUIRE(certify(shells).certified());
 
   // (a) Constraints found from the shells themselves: the shared face plane.
@@ -292,8 +307,8 @@ BOOST_AUTO_TEST_CASE(neighbours_sharing_a_cut_face_stay_disjoint) {
   BOOST_CHECK(rep.certified());
   // The shared face may sink by its dome (fatten_flat_facets), nothing else may.
   std::vector<Point3> left_off, right_off;
-  for (const Point3& p : left) if (p.x() != 0) left_off.push_back(p);
-  for (const Point3& p : right) if (p.x() != 0) right_off.push_back(p);
+  for (const Point3& p : halves.left) if (p.x() != 0) left_off.push_back(p);
+  for (const Point3& p : halves.right) if (p.x() != 0) right_off.push_back(p);
   BOOST_CHECK(encloses(out[0], left_off) && encloses(out[1], right_off));
   BOOST_CHECK_LT(std::max(st[0].flat.max_inward, st[1].flat.max_inward), 1e-8);
 
@@ -426,14 +441,7 @@ BOOST_AUTO_TEST_CASE(unconstrained_flat_caps_bulge_outward_and_enclose) {
 }
 
 BOOST_AUTO_TEST_CASE(shared_face_sinks_on_both_sides_and_stays_disjoint) {
-  std::vector<Point3> left, right;
-  for (const auto& p : ellipsoid_points(100, 6, 1, 1.2, 5)) (p.x() <= 0 ? left : right).push_back(p);
-  for (int i = 0; i < 16; ++i) {
-    const Point3 q(0, 0.99 * std::cos(2 * M_PI * i / 16), 0.3 * std::sin(2 * M_PI * i / 16));
-    left.push_back(q);
-    right.push_back(q);
-  }
-  const std::vector<Mesh> shells{convex_hull_mesh(left), convex_hull_mesh(right)};
+  const std::vector<Mesh> shells = halves_sharing_a_polygon(16, 0.3).shells;
   const auto cons = neighbour_constraints(shells);
   std::vector<Mesh> out;
   std::size_t inward = 0;
