@@ -76,7 +76,9 @@ struct ShellResult {
   std::vector<double> sweep_gains;
   double union_volume = 0.0;           ///< of the parts' original convex hulls (certified enclosure midpoint)
   double shells_volume = 0.0;
-  double volume_loss = 0.0;            ///< (union - shells) / union
+  double volume_loss = 0.0;            ///< (union - shells) / union, correctly signed (volume_loss.h)
+  double volume_loss_error_bound = 0.0;///< certified bound on its error
+  bool volume_loss_exact = false;      ///< decided in exact rationals
   CertificationReport certification;
   std::vector<StageTime> times;
 };

@@ -28,4 +28,8 @@ UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max
 UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, const std::vector<Overlap>& overlaps,
                          double max_relative_error = 1e-12);
 
+/// The same sum in exact rationals only (no interval filter): for callers that must decide the
+/// sign of a difference the enclosure cannot.
+ExactRational exact_union_volume(const std::vector<ExactPolytope>& polytopes);
+
 }  // namespace dcshell

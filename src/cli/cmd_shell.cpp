@@ -110,7 +110,9 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
       .field("sweep_gains", r.sweep_gains)
       .field("union_volume", r.union_volume)
       .field("shells_volume", r.shells_volume)
-      .field("volume_loss", r.volume_loss);
+      .field("volume_loss", r.volume_loss)
+      .field("volume_loss_error_bound", r.volume_loss_error_bound)
+      .field("volume_loss_exact", r.volume_loss_exact);
   std::vector<std::string> names;
   for (std::size_t k = 0; k < r.shells.size(); ++k) names.push_back(shell_name(k));
   json.key("certification").begin_object();

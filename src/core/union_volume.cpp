@@ -57,10 +57,11 @@ struct NerveWalk {
 
 UnionVolume sum_over_nerve(const std::vector<ExactPolytope>& polys, const std::vector<std::vector<std::size_t>>& later,
                            const std::vector<std::vector<const ExactPolytope*>>* pair_region,
-                           double max_relative_error) {
+                           double max_relative_error, ExactRational* exact_sum) {
   UnionVolume out;
   const std::size_t n = polys.size();
   for (bool exact : {false, true}) {
+    if (!exact && exact_sum) continue;
     out.terms = out.max_clique = 0;
     NerveWalk w{polys, later, pair_region, exact, out};
     for (std::size_t i = 0; i < n; ++i) {
@@ -77,22 +78,34 @@ UnionVolume sum_over_nerve(const std::vector<ExactPolytope>& polys, const std::v
       out.value = CGAL::to_double(w.sum_exact);
       out.error_bound = std::fabs(out.value) * 1e-16;  // rounding of the exact rational
       out.exact_fallback = true;
+      if (exact_sum) *exact_sum = w.sum_exact;
     }
   }
   return out;
 }
 
-}  // namespace
-
-UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error) {
+// Box-overlapping neighbours with larger index: the candidates of the nerve walk.
+std::vector<std::vector<std::size_t>> later_neighbours(const std::vector<ExactPolytope>& polys) {
   const std::size_t n = polys.size();
   std::vector<CGAL::Bbox_3> boxes(n);
   for (std::size_t i = 0; i < n; ++i) boxes[i] = bbox(polys[i]);
-  std::vector<std::vector<std::size_t>> later(n);  // box-overlapping neighbours with larger index
+  std::vector<std::vector<std::size_t>> later(n);
   for (auto [i, j] : box_overlap_pairs(boxes))
     if (!polys[i].empty() && !polys[j].empty()) later[i].push_back(j);
   for (auto& l : later) std::sort(l.begin(), l.end());
-  return sum_over_nerve(polys, later, nullptr, max_relative_error);
+  return later;
+}
+
+}  // namespace
+
+UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error) {
+  return sum_over_nerve(polys, later_neighbours(polys), nullptr, max_relative_error, nullptr);
+}
+
+ExactRational exact_union_volume(const std::vector<ExactPolytope>& polys) {
+  ExactRational v(0);
+  sum_over_nerve(polys, later_neighbours(polys), nullptr, 0.0, &v);
+  return v;
 }
 
 UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>& overlaps,
@@ -107,7 +120,7 @@ UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vec
     std::sort(by_first[i].begin(), by_first[i].end());
     for (const auto& [j, r] : by_first[i]) later[i].push_back(j), region[i].push_back(r);
   }
-  return sum_over_nerve(polys, later, &region, max_relative_error);
+  return sum_over_nerve(polys, later, &region, max_relative_error, nullptr);
 }
 
 }  // namespace dcshell

@@ -12,7 +12,7 @@
 #include "dcshell/overlaps.h"
 #include "dcshell/parallel_for.h"
 #include "dcshell/polytope_clip.h"
-#include "dcshell/union_volume.h"
+#include "dcshell/volume_loss.h"
 
 namespace dcshell {
 
@@ -250,8 +250,12 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   }
   clock.lap("certify");
   // Without remeshing the overlaps are those of the original hulls: reuse them.
-  res.union_volume = (opt.simplify_iterations > 0 ? union_volume(original) : union_volume(original, overlaps)).value;
-  res.volume_loss = res.union_volume > 0 ? (res.union_volume - res.shells_volume) / res.union_volume : 0.0;
+  const VolumeLoss loss = volume_loss(original, meshes, opt.simplify_iterations > 0 ? nullptr : &overlaps);
+  res.union_volume = loss.union_volume;
+  res.shells_volume = loss.shells_volume;  // the exact sum, rounded once
+  res.volume_loss = loss.value;
+  res.volume_loss_error_bound = loss.error_bound;
+  res.volume_loss_exact = loss.exact;
   clock.lap("volume");
   return res;
 }

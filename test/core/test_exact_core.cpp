@@ -9,6 +9,7 @@
 #include "dcshell/exact_polytope.h"
 #include "dcshell/overlaps.h"
 #include "dcshell/union_volume.h"
+#include "dcshell/volume_loss.h"
 #include "test_util.h"
 
 using namespace dcshell;
@@ -84,6 +85,34 @@ BOOST_AUTO_TEST_CASE(union_of_known_boxes) {
   BOOST_TEST(r.value == expect + 0.5, boost::test_tools::tolerance(1e-14));
   BOOST_TEST(r.terms == 8u);
   BOOST_TEST(union_volume(p, o, -1.0).value == expect + 0.5);
+}
+
+BOOST_AUTO_TEST_CASE(volume_loss_has_the_true_sign_down_to_one_ulp) {
+  // Two overlapping boxes with non-representable volumes, split exactly at x = c: the shells
+  // fill the union, so the loss is exactly 0, whatever the doubles' rounding of the volumes.
+  const double c = 0.0731, x1 = 0.15;
+  std::vector<ExactPolytope> hulls{exact_hull(box_points(0, 0, 0, 0.1, 0.3, 0.7)),
+                                   exact_hull(box_points(0.05, 0, 0, x1, 0.3, 0.7))};
+  auto shells_to = [&](double right) {
+    return std::vector<Mesh>{convex_hull_mesh(box_points(0, 0, 0, c, 0.3, 0.7)),
+                             convex_hull_mesh(box_points(c, 0, 0, right, 0.3, 0.7))};
+  };
+  VolumeLoss zero = volume_loss(hulls, shells_to(x1));
+  BOOST_TEST(zero.value == 0.0);
+  BOOST_TEST(zero.exact);
+  // One ulp more or less on one face: the loss is tiny but its sign is the true one.
+  VolumeLoss grown = volume_loss(hulls, shells_to(std::nextafter(x1, 1.0)));
+  BOOST_TEST(grown.value < 0.0);
+  BOOST_TEST(grown.value > -1e-14);
+  VolumeLoss shrunk = volume_loss(hulls, shells_to(std::nextafter(x1, 0.0)));
+  BOOST_TEST(shrunk.value > 0.0);
+  // A real loss is decided by the interval filter and matches the exact quotient.
+  VolumeLoss half = volume_loss(hulls, shells_to(0.11));
+  BOOST_TEST(!half.exact);
+  const ExactRational u = exact_union_volume(hulls);
+  BOOST_TEST(half.value == CGAL::to_double((u - exact_volume(exact_hull(box_points(0, 0, 0, 0.11, 0.3, 0.7)))) / u),
+             boost::test_tools::tolerance(1e-12));
+  BOOST_TEST(half.error_bound <= 1e-9 * half.value);
 }
 
 BOOST_AUTO_TEST_CASE(nested_and_duplicated_polytopes) {

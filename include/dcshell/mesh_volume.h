@@ -1,0 +1,14 @@
+// Exact volume of a closed mesh as given by its double coordinates.
+#pragma once
+#include <CGAL/Mpzf.h>
+
+#include "dcshell/kernel.h"
+
+namespace dcshell {
+
+/// 6 × the signed volume bounded by a closed, consistently oriented surface, exact on the
+/// doubles: Mpzf (binary floating point of unbounded precision) holds sums and products of
+/// doubles exactly, without the gcds a rational type would compute.
+CGAL::Mpzf six_signed_volume(const Mesh& mesh);
+
+}  // namespace dcshell
