@@ -12,6 +12,13 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Output that cannot be written (a missing or read-only directory, a full disk, a target that
+/// is a directory). The CLI treats it like bad usage: one line, exit code 2.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 /// Formats "file:line: what" (line omitted when 0).
 std::string input_error_message(const std::string& file, std::size_t line, const std::string& what);
 

@@ -30,6 +30,10 @@ int run_check(int argc, char** argv) {
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
     if (inputs.empty()) throw InputError("no input meshes (see 'dcshell check --help')");
     auto t0 = std::chrono::steady_clock::now();
+    // Inputs, as given and expanded, that the report must not overwrite: refused before any work.
+    std::vector<std::string> protect = expand_inputs(inputs);
+    protect.insert(protect.end(), inputs.begin(), inputs.end());
+    if (!output.empty()) check_output_file(output, protect);
     auto set = read_mesh_set(inputs);
     std::vector<std::string> names;
     std::vector<Mesh> meshes;
@@ -47,7 +51,7 @@ int run_check(int argc, char** argv) {
       json.field("time_s", secs);
       json.end_object();
     };
-    if (!output.empty()) write_file_atomically(output, write);
+    if (!output.empty()) write_file_atomically(output, write, protect);
     write(std::cout);
     if (!vm.count("quiet")) {
       print_certification_problems(rep, names);

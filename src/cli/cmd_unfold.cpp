@@ -14,6 +14,7 @@
 #include "dcshell/error.h"
 #include "dcshell/fold_check.h"
 #include "dcshell/json.h"
+#include "dcshell/mesh_volume.h"
 #include "dcshell/net_sheets.h"
 #include "dcshell/parallel_for.h"
 #include "dcshell/read_mesh.h"
@@ -40,17 +41,34 @@ std::string numbered(const std::string& prefix, std::size_t k, const std::string
   return os.str();
 }
 
-// Frames of the folding motion, all shells side by side (each shifted along x past the previous
-// one's net), one OBJ per frame: FILE's stem + _NNN + extension.
-void write_motion(const std::string& file, int frames, const std::vector<ShellResult>& shells,
-                  const std::vector<std::string>& inputs) {
+// Names of the frames of the folding motion: FILE's stem + _NNN + extension. Refused before any
+// work when one is an input or, without --force, already exists.
+std::vector<std::string> motion_frame_names(const std::string& file, int frames, bool force,
+                                            const std::vector<std::string>& inputs, const std::string& out) {
   fs::path p(file);
+  std::error_code ec;
+  {  // The output directory is replaced as a whole at commit: frames cannot live inside it.
+    const std::string dir = fs::weakly_canonical(p.parent_path().empty() ? "." : p.parent_path(), ec).string() + "/";
+    const std::string target = fs::weakly_canonical(out, ec).string() + "/";
+    if (dir.compare(0, target.size(), target) == 0)
+      throw InputError(file + ": --motion must be outside the --out directory " + out);
+  }
   std::string stem = (p.parent_path() / p.stem()).string(), ext = p.has_extension() ? p.extension().string() : ".obj";
   std::vector<std::string> names;
-  for (int i = 0; i < frames; ++i) names.push_back(numbered(stem + "_", static_cast<std::size_t>(i), ext));
-  for (auto& n : names)
-    for (auto& in : inputs)
-      if (fs::exists(n) && fs::equivalent(n, in)) throw InputError(n + ": --motion would overwrite an input");
+  for (int i = 0; i < frames; ++i) {
+    names.push_back(numbered(stem + "_", static_cast<std::size_t>(i), ext));
+    check_output_file(names.back(), inputs);
+    if (!force && fs::exists(names.back(), ec))
+      throw InputError(names.back() + ": --motion frame exists (use --force to replace it)");
+  }
+  return names;
+}
+
+// Frames of the folding motion, all shells side by side (each shifted along x past the previous
+// one's net), one OBJ per frame, all written or none.
+void write_motion(const std::vector<std::string>& names, const std::vector<ShellResult>& shells,
+                  AtomicFiles& frames_out) {
+  const int frames = static_cast<int>(names.size());
   std::vector<double> shift(shells.size(), 0.0);
   double x = 0;
   for (std::size_t s = 0; s < shells.size(); ++s) {
@@ -62,7 +80,7 @@ void write_motion(const std::string& file, int frames, const std::vector<ShellRe
   }
   for (int i = 0; i < frames; ++i) {
     double t = frames > 1 ? static_cast<double>(i) / (frames - 1) : 1.0;
-    write_file_atomically(names[i], [&](std::ostream& os) {
+    frames_out.write(names[i], [&](std::ostream& os) {
       os << std::setprecision(17) << "# dcshell folding motion, t = " << t << "\n";
       std::size_t base = 1;
       for (std::size_t s = 0; s < shells.size(); ++s) {
@@ -74,6 +92,42 @@ void write_motion(const std::string& file, int frames, const std::vector<ShellRe
       }
     });
   }
+}
+
+// Drops the shells that enclose no volume (flat) or a negligible one (below 1e-12 of the cube
+// of the whole set's bounding-box diagonal), warning for each; refuses a set with none left.
+// Returns the input index of every shell kept.
+std::vector<std::size_t> skip_flat_and_tiny(std::vector<std::string>& files, std::vector<Mesh>& meshes) {
+  CGAL::Bbox_3 box;
+  for (const auto& m : meshes)
+    for (auto v : m.vertices()) box += m.point(v).bbox();
+  const double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                CGAL::square(box.zmax() - box.zmin()));
+  std::vector<std::size_t> index;
+  std::vector<std::string> kept_files, why;
+  std::vector<Mesh> kept;
+  for (std::size_t k = 0; k < meshes.size(); ++k) {
+    const double volume = CGAL::to_double(six_signed_volume(meshes[k])) / 6;
+    std::string problem;
+    if (volume == 0) problem = "is flat (encloses no volume)";
+    else if (std::fabs(volume) < 1e-12 * diag * diag * diag) problem = "is tiny (volume " + std::to_string(volume) + ")";
+    if (!problem.empty()) {
+      std::cerr << "dcshell unfold: warning: " << files[k] << " " << problem << "; skipped\n";
+      why.push_back(files[k] + " " + problem);
+      continue;
+    }
+    index.push_back(k);
+    kept_files.push_back(files[k]);
+    kept.push_back(std::move(meshes[k]));
+  }
+  if (kept.empty()) {
+    std::string all;
+    for (const auto& w : why) all += (all.empty() ? "" : "; ") + w;
+    throw InputError("no shell left to unfold: " + all);
+  }
+  files = std::move(kept_files);
+  meshes = std::move(kept);
+  return index;
 }
 
 int run_unfold(int argc, char** argv) {
@@ -144,7 +198,15 @@ int run_unfold(int argc, char** argv) {
     auto files = expand_inputs(inputs);
     std::vector<Mesh> meshes;
     for (auto& f : files) meshes.push_back(read_mesh(f));
+    // Input index of each shell kept: a flat or tiny shell among good ones is skipped with a
+    // warning (net_k.obj keeps the input's index k).
+    const std::vector<std::size_t> index = skip_flat_and_tiny(files, meshes);
     AtomicDirectory dir(out, vm.count("force") > 0, files);
+    std::vector<std::string> protect = files;
+    protect.insert(protect.end(), inputs.begin(), inputs.end());
+    const std::vector<std::string> frame_names =
+        motion.empty() ? std::vector<std::string>{} : motion_frame_names(motion, frames, vm.count("force") > 0, protect, out);
+    AtomicFiles frames_out(protect);
 
     std::vector<ShellResult> shells(files.size());
     // Shells are independent: one per core, each writing only its own slot (the output does not
@@ -175,10 +237,10 @@ int run_unfold(int argc, char** argv) {
     for (std::size_t k = 0; k < files.size(); ++k) {
       auto& s = shells[k];
       std::string name = fs::path(files[k]).stem().string();
-      if (!used_names.insert(name).second) name = numbered("shell_", k, "");
+      if (!used_names.insert(name).second) name = numbered("shell_", index[k], "");
       used_names.insert(name);
       s.net.name = name;
-      s.net_file = numbered("net_", k, ".obj");
+      s.net_file = numbered("net_", index[k], ".obj");
       dir.write(s.net_file, [&](std::ostream& os) { write_net_obj(s.net, os); });
       if (!s.stats.convex)
         std::cerr << "dcshell unfold: warning: " << files[k] << " is not convex (" << s.stats.reflex_edges
@@ -210,7 +272,7 @@ int run_unfold(int argc, char** argv) {
       for (std::size_t k = 0; k < shells.size(); ++k) {
         const auto& s = shells[k];
         json.begin_object();
-        json.field("index", k).field("input", s.input).field("name", s.net.name).field("net", s.net_file);
+        json.field("index", index[k]).field("input", s.input).field("name", s.net.name).field("net", s.net_file);
         json.field("faces", s.stats.faces).field("facets", s.stats.facets).field("flat_angle", s.stats.flat_angle);
         json.field("convex", s.stats.convex).field("reflex_edges", s.stats.reflex_edges);
         json.field("heuristic", s.stats.heuristic).field("attempts", s.stats.attempts);
@@ -231,8 +293,9 @@ int run_unfold(int argc, char** argv) {
       json.end_object();
       os << "\n";
     });
-    if (!motion.empty()) write_motion(motion, frames, shells, files);
+    if (!motion.empty()) write_motion(frame_names, shells, frames_out);
     dir.commit();
+    frames_out.commit();
     std::cerr << (all_good ? "ok: " : "NOT ok: ") << shells.size() << " nets written to " << out << "\n";
     return all_good ? 0 : 1;
   });

@@ -14,7 +14,7 @@ namespace dcshell::cli {
 
 /// A sub-command gets its own arguments (argv[0] is the sub-command name) and returns the
 /// process exit code. Exit codes: 0 success/certified, 1 ran but not certified (or failed a
-/// quality condition), 2 bad input or usage.
+/// quality condition), 2 bad input or usage, or output that cannot be written.
 using CommandFn = std::function<int(int argc, char** argv)>;
 
 struct Command {
@@ -31,7 +31,7 @@ struct CommandRegistration {
 };
 
 /// Runs `body`, mapping exceptions to exit codes and one-line messages on stderr:
-/// InputError and boost::program_options errors -> "dcshell <cmd>: error: ..." exit 2;
+/// InputError, OutputError and boost::program_options errors -> "dcshell <cmd>: error: ..." exit 2;
 /// any other exception -> exit 3 (internal error).
 int guarded(const std::string& cmd, const std::function<int()>& body);
 

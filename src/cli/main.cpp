@@ -20,6 +20,9 @@ int guarded(const std::string& cmd, const std::function<int()>& body) {
   } catch (const InputError& e) {
     std::cerr << "dcshell " << cmd << ": error: " << e.what() << "\n";
     return 2;
+  } catch (const OutputError& e) {
+    std::cerr << "dcshell " << cmd << ": error: " << e.what() << "\n";
+    return 2;
   } catch (const boost::program_options::error& e) {
     std::cerr << "dcshell " << cmd << ": error: " << e.what() << " (see 'dcshell " << cmd << " --help')\n";
     return 2;

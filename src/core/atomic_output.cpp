@@ -2,6 +2,9 @@
 
 #include <unistd.h>
 
+#include <cctype>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -23,32 +26,77 @@ bool same_or_inside(const fs::path& inner, const fs::path& outer) {
     if (ai == a.end() || *ai != *bi) return false;
   return true;
 }
+
+// The system's reason for the last failed stream operation, e.g. " (No space left on device)".
+std::string reason() { return errno ? std::string(" (") + std::strerror(errno) + ")" : std::string(); }
+
+void write_stream(const std::string& shown, const std::string& file, const std::function<void(std::ostream&)>& fn) {
+  errno = 0;
+  std::ofstream os(file, std::ios::binary | std::ios::trunc);
+  if (!os) throw OutputError(shown + ": cannot open for writing" + reason());
+  fn(os);
+  errno = 0;
+  os.flush();
+  if (!os) throw OutputError(shown + ": write failed" + reason());
+  os.close();
+  if (!os) throw OutputError(shown + ": write failed" + reason());
+}
+
+void rename_or_throw(const fs::path& from, const fs::path& to, const std::string& shown) {
+  std::error_code ec;
+  fs::rename(from, to, ec);
+  if (ec) throw OutputError(shown + ": cannot move the finished output into place (" + ec.message() + ")");
+}
 }  // namespace
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  std::string tmp = path + unique_suffix();
-  try {
-    {
-      std::ofstream os(tmp, std::ios::binary | std::ios::trunc);
-      if (!os) throw std::runtime_error(path + ": cannot open for writing");
-      write(os);
-      os.flush();
-      if (!os) throw std::runtime_error(path + ": write failed");
-    }
-    fs::rename(tmp, path);
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    throw;
+void refuse_input_as_output(const std::string& path, const std::vector<std::string>& inputs) {
+  // A mesh file written into an input directory would be read as input by the next run.
+  std::string ext = fs::path(path).extension().string();
+  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+  const bool mesh = ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl";
+  std::error_code ec;
+  for (const auto& in : inputs) {
+    if (same_or_inside(in, path)) throw InputError(path + ": output would overwrite input " + in);
+    if (mesh && fs::is_directory(in, ec) && same_or_inside(path, in))
+      throw InputError(path + ": output mesh would be written into input directory " + in);
   }
+}
+
+void check_output_file(const std::string& path, const std::vector<std::string>& inputs) {
+  refuse_input_as_output(path, inputs);
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InputError(path + ": is a directory, expected a file name");
+  const fs::path parent = fs::path(path).parent_path();
+  if (!parent.empty() && !fs::is_directory(parent, ec)) throw OutputError(path + ": directory " + parent.string() + " does not exist");
+}
+
+void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write,
+                           const std::vector<std::string>& inputs) {
+  AtomicFiles files(inputs);
+  files.write(path, write);
+  files.commit();
+}
+
+AtomicFiles::~AtomicFiles() {
+  std::error_code ec;
+  for (const auto& p : pending_) fs::remove(p.first, ec);
+}
+
+void AtomicFiles::write(const std::string& path, const std::function<void(std::ostream&)>& fn) {
+  check_output_file(path, inputs_);
+  pending_.emplace_back(path + unique_suffix(), path);
+  write_stream(path, pending_.back().first, fn);
+}
+
+void AtomicFiles::commit() {
+  for (const auto& [tmp, target] : pending_) rename_or_throw(tmp, target, target);
+  pending_.clear();
 }
 
 AtomicDirectory::AtomicDirectory(const std::string& target, bool force, const std::vector<std::string>& inputs)
     : target_(target), force_(force) {
   if (target.empty()) throw InputError("output directory name is empty");
-  for (const auto& in : inputs)
-    if (same_or_inside(in, target))
-      throw InputError(target + ": output directory would overwrite input " + in);
+  refuse_input_as_output(target, inputs);
   std::error_code ec;
   if (fs::exists(target, ec)) {
     if (!fs::is_directory(target, ec)) throw InputError(target + ": exists and is not a directory");
@@ -60,7 +108,7 @@ AtomicDirectory::AtomicDirectory(const std::string& target, bool force, const st
   temp_ = (t.parent_path() / ("." + t.filename().string() + unique_suffix())).string();
   fs::remove_all(temp_, ec);
   if (!fs::create_directories(temp_, ec) || ec)
-    throw InputError(target + ": cannot create output directory (" + ec.message() + ")");
+    throw OutputError(target + ": cannot create output directory (" + ec.message() + ")");
 }
 
 AtomicDirectory::~AtomicDirectory() {
@@ -73,11 +121,7 @@ AtomicDirectory::~AtomicDirectory() {
 std::string AtomicDirectory::path(const std::string& name) const { return (fs::path(temp_) / name).string(); }
 
 void AtomicDirectory::write(const std::string& name, const std::function<void(std::ostream&)>& fn) {
-  std::ofstream os(path(name), std::ios::binary | std::ios::trunc);
-  if (!os) throw std::runtime_error(target_ + "/" + name + ": cannot open for writing");
-  fn(os);
-  os.flush();
-  if (!os) throw std::runtime_error(target_ + "/" + name + ": write failed");
+  write_stream(target_ + "/" + name, path(name), fn);
 }
 
 void AtomicDirectory::commit() {
@@ -85,11 +129,11 @@ void AtomicDirectory::commit() {
   if (fs::exists(target_, ec)) {
     // Replace: move the old directory aside first so the swap is never half-done.
     std::string old = temp_ + ".old";
-    fs::rename(target_, old);
-    fs::rename(temp_, target_);
+    rename_or_throw(target_, old, target_);
+    rename_or_throw(temp_, target_, target_);
     fs::remove_all(old, ec);
   } else {
-    fs::rename(temp_, target_);
+    rename_or_throw(temp_, target_, target_);
   }
   committed_ = true;
 }

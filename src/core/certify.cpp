@@ -8,6 +8,7 @@
 #include "dcshell/mesh_volume.h"
 #include "dcshell/overlaps.h"
 
+#include <map>
 #include <numeric>
 
 namespace dcshell {
@@ -56,6 +57,18 @@ ConvexityVerdict check_convexity(const Mesh& mesh) {
   v.outward = six > 0;
   // Convex: every face is planar and every vertex lies on the inner side (or on) its plane.
   std::vector<Point3> pts = mesh_points(mesh);
+  // "Every vertex on the inner side of every face plane" is decided on the exact convex hull H
+  // of the vertices instead of against every vertex: the halfspace is convex, so it holds for all
+  // vertices iff it holds for H's corners, and on the convex polytope H a corner no neighbour of
+  // which is farther from the plane is the farthest of all (the simplex method's argument). The
+  // climb starts at the face's own corner, so it is O(degree) per face, not O(vertices).
+  const Mesh hull = convex_hull_mesh(pts);
+  std::vector<std::vector<Mesh::Vertex_index>> hull_nbr(hull.number_of_vertices() + hull.number_of_removed_vertices());
+  std::map<Point3, Mesh::Vertex_index> hull_vertex;
+  for (auto u : hull.vertices()) {
+    hull_vertex.emplace(hull.point(u), u);
+    for (auto h : CGAL::halfedges_around_target(hull.halfedge(u), hull)) hull_nbr[u].push_back(hull.source(h));
+  }
   for (auto f : mesh.faces()) {
     std::vector<Point3> fp;
     for (auto h : CGAL::halfedges_around_face(mesh.halfedge(f), mesh)) fp.push_back(mesh.point(mesh.target(h)));
@@ -73,20 +86,31 @@ ConvexityVerdict check_convexity(const Mesh& mesh) {
         v.reason = "face " + std::to_string(std::size_t(f)) + " is not planar";
         return v;
       }
-    for (const auto& q : pts)
-      if (CGAL::orientation(a, b, c, q) == CGAL::POSITIVE) {
-        v.reason = "not convex: a vertex lies outside the plane of face " + std::to_string(std::size_t(f));
-        return v;
-      }
+    if (hull.is_empty()) continue;  // all points coplanar: no vertex is off any face plane
+    auto it = hull_vertex.find(a);
+    Mesh::Vertex_index u = it != hull_vertex.end() ? it->second : *hull.vertices().begin();
+    for (bool moved = true; moved;) {
+      moved = false;
+      for (auto w : hull_nbr[u])
+        if (CGAL::compare_signed_distance_to_plane(a, b, c, hull.point(w), hull.point(u)) == CGAL::LARGER) {
+          u = w;
+          moved = true;
+          break;
+        }
+    }
+    if (CGAL::orientation(a, b, c, hull.point(u)) == CGAL::POSITIVE) {
+      v.reason = "not convex: a vertex lies outside the plane of face " + std::to_string(std::size_t(f));
+      return v;
+    }
   }
   v.convex = true;
   if (!v.outward) {
-    v.reason = "faces are oriented inward (negative volume)";
+    v.reason = CGAL::is_zero(six) ? "flat: encloses no volume (all vertices coplanar)" : "faces are oriented inward (negative volume)";
     return v;
   }
   // Closed, sphere-like and locally supporting everywhere: the surface bounds the hull of its
   // vertices exactly once iff the volumes agree (rules out multiply-covered surfaces).
-  if (six_signed_volume(convex_hull_mesh(pts)) != six) {
+  if (six_signed_volume(hull) != six) {
     v.convex = false;
     v.reason = "not convex: surface volume differs from its convex hull's";
   }

@@ -40,14 +40,19 @@ namespace {
 std::vector<std::array<std::size_t, 3>> triangulate_convex_facet(const std::vector<Point3>& poly) {
   const std::size_t k = poly.size();
   if (k == 3) return {{0, 1, 2}};
-  double n[3] = {0, 0, 0};  // Newell normal: only its dominant axis and that axis' sign are used
-  for (std::size_t i = 0; i < k; ++i) {
-    const Point3& a = poly[i];
-    const Point3& b = poly[(i + 1) % k];
-    n[0] += (a.y() - b.y()) * (a.z() + b.z());
-    n[1] += (a.z() - b.z()) * (a.x() + b.x());
-    n[2] += (a.x() - b.x()) * (a.y() + b.y());
-  }
+  // Newell normal: only its dominant axis and that axis' sign are used. Computed on coordinates
+  // relative to the first corner and scaled by the polygon's extent, so products neither
+  // underflow (tiny models) nor overflow (huge ones).
+  double scale = 0;
+  for (const auto& q : poly)
+    for (int d = 0; d < 3; ++d) scale = std::max(scale, std::fabs(q[d] - poly[0][d]));
+  auto rel = [&](std::size_t i, int d) { return (poly[i % k][d] - poly[0][d]) / scale; };
+  double n[3] = {0, 0, 0};
+  for (std::size_t i = 0; i < k; ++i)
+    for (int d = 0; d < 3; ++d) {
+      const int u = (d + 1) % 3, w = (d + 2) % 3;
+      n[d] += (rel(i, u) - rel(i + 1, u)) * (rel(i, w) + rel(i + 1, w));
+    }
   int axis = 0;
   for (int d = 1; d < 3; ++d)
     if (std::fabs(n[d]) > std::fabs(n[axis])) axis = d;

@@ -5,6 +5,7 @@
 #include <CGAL/intersections.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <numeric>
 #include <stdexcept>
@@ -185,12 +186,43 @@ ExactPolytope clip(const ExactPolytope& p, const EPlane& h, int tag) {
   return out;
 }
 
+namespace {
+
+// Conservative box of a polytope's vertices, from their interval approximations.
+struct IntervalBox {
+  CGAL::Interval_nt<false> x, y, z;
+};
+IntervalBox interval_box(const ExactPolytope& p) {
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (const auto& v : p.vertices)
+    for (int d = 0; d < 3; ++d) {
+      const auto iv = CGAL::approx(v[d]);
+      lo[d] = std::min(lo[d], iv.inf());
+      hi[d] = std::max(hi[d], iv.sup());
+    }
+  return {{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}};
+}
+
+// True when the whole box is certainly strictly below h: clipping by h then changes nothing.
+bool box_strictly_below(const IntervalBox& b, const EPlane& h) {
+  CGAL::Protect_FPU_rounding<true> guard;
+  const auto v = CGAL::approx(h.a()) * b.x + CGAL::approx(h.b()) * b.y + CGAL::approx(h.c()) * b.z + CGAL::approx(h.d());
+  return v.sup() < 0;
+}
+
+}  // namespace
+
 ExactPolytope intersect(const ExactPolytope& a, const ExactPolytope& b) {
   if (a.empty() || b.empty()) return {};
   ExactPolytope r = a;
+  IntervalBox box = interval_box(r);
   for (const auto& f : b.faces) {
+    // Most planes of a large b miss r: an interval test on r's box skips them without
+    // classifying r's vertices or copying r (what clip() would return is r itself).
+    if (box_strictly_below(box, f.plane)) continue;
     r = clip(r, f.plane, f.tag);
     if (r.empty()) return {};
+    box = interval_box(r);
   }
   return r;
 }

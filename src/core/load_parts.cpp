@@ -3,6 +3,8 @@
 
 #include <CGAL/Bbox_3.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <numeric>
 
@@ -87,27 +89,43 @@ std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector
       parts.push_back({base_name(file), file, referenced_points(soup, all)});
     }
   }
-  // Scale of the whole shape, for the "tiny" test.
+  // Scale of the whole shape (its solid parts: a flat sheet is no measure of size), for the
+  // "tiny" test.
+  std::vector<bool> flat(parts.size());
   CGAL::Bbox_3 box;
-  for (const auto& p : parts)
-    for (const auto& q : p.points) box += q.bbox();
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    flat[i] = !spans_3d(parts[i].points);
+    if (!flat[i])
+      for (const auto& q : parts[i].points) box += q.bbox();
+  }
   double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
                           CGAL::square(box.zmax() - box.zmin()));
   std::vector<Part> kept;
-  for (auto& p : parts) {
-    if (!spans_3d(p.points)) {
+  std::vector<std::string> skipped;
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    Part& p = parts[i];
+    if (flat[i]) {
+      skipped.push_back(p.name + " is flat");
       warnings.push_back(p.source + ": part " + p.name + " is flat (its points are coplanar); skipped");
       continue;
     }
     double v = approximate_volume(exact_hull(p.points));
-    if (v < options.tiny_volume_fraction * diag * diag * diag) {
-      warnings.push_back(p.source + ": part " + p.name + " is tiny (hull volume " + std::to_string(v) +
-                         "); skipped");
+    const double fraction = v / (diag * diag * diag);
+    if (fraction < options.tiny_volume_fraction) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, " is tiny (hull volume %.3g = %.2g of the shape's bounding cube, below %.2g); skipped",
+                    v, fraction, options.tiny_volume_fraction);
+      skipped.push_back(p.name + " is tiny");
+      warnings.push_back(p.source + ": part " + p.name + buf);
       continue;
     }
     kept.push_back(std::move(p));
   }
-  if (kept.empty()) throw InputError((files.size() == 1 ? files[0] : std::string("input")) + ": no solid part left (all parts are flat or tiny)");
+  if (kept.empty()) {
+    std::string why;
+    for (const auto& w : skipped) why += (why.empty() ? "" : ", ") + w;
+    throw InputError((files.size() == 1 ? files[0] : std::string("input")) + ": no solid part left (" + why + ")");
+  }
   return kept;
 }
 

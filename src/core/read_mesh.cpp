@@ -11,6 +11,7 @@
 #include <cctype>
 #include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -30,6 +31,7 @@ namespace {
 
 constexpr double kMaxCoordinate = 1e12;         // beyond this, exact predicates still work but the
                                                 // geometry is meaningless (absurd units or garbage)
+constexpr double kMinExtent = 1e-90;            // below this, volumes (size^3) underflow doubles
 constexpr std::size_t kMaxElements = 50000000;  // guards against absurd allocations
 
 [[noreturn]] void fail(const std::string& file, std::size_t line, const std::string& what) {
@@ -171,6 +173,18 @@ PolygonSoup read_polygon_soup(const std::string& path) {
   }
   if (soup.points.empty()) fail(path, 0, "no vertices");
   if (soup.faces.empty()) fail(path, 0, "no faces");
+  double extent = 0;
+  for (int d = 0; d < 3; ++d) {
+    double lo = soup.points[0][d], hi = lo;
+    for (const auto& q : soup.points) lo = std::min(lo, q[d]), hi = std::max(hi, q[d]);
+    extent = std::max(extent, hi - lo);
+  }
+  if (extent > 0 && extent < kMinExtent) {
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.3g", extent);
+    fail(path, 0, std::string("model is too small to compute with (extent ") + buf +
+                      " < 1e-90: its volumes would underflow doubles); rescale it");
+  }
   return soup;
 }
 

@@ -83,8 +83,14 @@ Mesh trim_shell(const ExactPolytope& hull, const std::vector<CutPlane>& keep_bel
   const Point3 c(cx / n, cy / n, cz / n);
   std::vector<Point3> kept;
   kept.reserve(rounded.size());
-  for (const auto& q : rounded) {
-    if (inside(q)) {
+  for (std::size_t i = 0; i < rounded.size(); ++i) {
+    const Point3& q = rounded[i];
+    // A vertex whose exact coordinates are doubles (a hull corner no cut touched: its interval
+    // approximation is a single point) rounds to itself, which lies in the polytope: no test.
+    // Only the vertices cuts created are tested, so an uncut hull of n vertices costs O(n).
+    const auto& e = p.vertices[i];
+    auto is_double = [](const Epeck::FT& x) { return CGAL::approx(x).inf() == CGAL::approx(x).sup(); };
+    if ((is_double(e.x()) && is_double(e.y()) && is_double(e.z())) || inside(q)) {
       kept.push_back(q);
       continue;
     }

@@ -51,6 +51,25 @@ cube 0 1 > "$T/c0.obj"; cube 1 2 > "$T/c1.obj"; cube 0.5 1.5 > "$T/c2.obj"
 "$BIN" check -q "$T/c0.obj" "$T/c2.obj" > "$T/rep.json"; [ $? -eq 1 ] || fail "overlapping cubes certified"
 grep -q '"volume": 0.5' "$T/rep.json" || fail "overlap volume not 0.5"
 
+# check -o never overwrites an input nor drops a mesh into an input directory; output errors are
+# exit 2 with the reason, before any work.
+mkdir -p "$T/in" && cp "$T/c0.obj" "$T/c1.obj" "$T/in/"
+before=$(md5sum "$T/in/c0.obj")
+"$BIN" check -q -o "$T/in/c0.obj" "$T/in" > /dev/null 2> "$T/err"; [ $? -eq 2 ] || fail "check -o onto an input: exit"
+[ "$(md5sum "$T/in/c0.obj")" = "$before" ] || fail "check -o overwrote an input"
+"$BIN" check -q -o "$T/in/report.obj" "$T/in" > /dev/null 2> "$T/err"; [ $? -eq 2 ] || fail "check -o into input dir"
+[ ! -e "$T/in/report.obj" ] || fail "check -o wrote a mesh into the input directory"
+"$BIN" check -q -o "$T/nodir/r.json" "$T/in" > /dev/null 2> "$T/err"; [ $? -eq 2 ] || fail "check -o missing dir: exit"
+grep -q "nodir.*does not exist" "$T/err" || fail "check -o missing dir message: $(cat "$T/err")"
+# A model too small for double volumes is refused, not a crash.
+printf 'v 0 0 0\nv 1e-170 0 0\nv 0 1e-170 0\nv 0 0 1e-170\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > "$T/tiny.obj"
+"$BIN" check -q "$T/tiny.obj" > /dev/null 2> "$T/err"; [ $? -eq 2 ] || fail "tiny model: exit"
+grep -q "tiny.obj: model is too small" "$T/err" || fail "tiny model message: $(cat "$T/err")"
+# A flat closed mesh is called flat, not inward.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.25 0.25 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > "$T/flat.obj"
+"$BIN" check "$T/flat.obj" > /dev/null 2> "$T/err"; [ $? -eq 1 ] || fail "flat mesh certified"
+grep -q "flat.obj: flat: encloses no volume" "$T/err" || fail "flat mesh message: $(cat "$T/err")"
+
 # volume-loss of shells against their parts.
 "$BIN" shell -q --out "$T/s" "$SRC/data/three_boxes" || fail "shell three_boxes"
 "$BIN" volume-loss -q --parts "$SRC/data/three_boxes" --shells "$T/s" > "$T/vl.json" || fail "volume-loss exit"

@@ -71,6 +71,17 @@ done
 for i in 000 001 002 003 004; do [ -s "$T/motion_$i.obj" ] || fail "missing motion frame $i"; done
 [ ! -e "$T/motion_005.obj" ] || fail "too many motion frames"
 
+# Motion frames are never overwritten without --force, and may not live inside --out.
+"$BIN" unfold --motion "$T/motion.obj" --motion-frames 5 --out "$T/mo2" "$T/tet.obj" 2> "$T/err.txt"
+[ $? = 2 ] || fail "--motion over existing frames without --force"
+[ ! -e "$T/mo2" ] || fail "--motion refusal left an output directory"
+"$BIN" unfold --motion "$T/mo3/m.obj" --out "$T/mo3" "$T/tet.obj" 2> /dev/null; [ $? = 2 ] || fail "--motion inside --out"
+# A flat shell among good ones is skipped with a warning; net_k keeps the input index.
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.25 0.25 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n' > "$T/a_flat.obj"
+"$BIN" unfold --out "$T/fl" "$T/a_flat.obj" "$T/tet.obj" 2> "$T/err.txt" || fail "flat shell among good ones: $(cat "$T/err.txt")"
+grep -q "a_flat.obj is flat.*skipped" "$T/err.txt" || fail "flat shell warning: $(cat "$T/err.txt")"
+[ -s "$T/fl/net_001.obj" ] && [ ! -e "$T/fl/net_000.obj" ] || fail "flat shell: net numbering"
+
 # Bad input: one line naming the file, exit 2, nothing written.
 expect_2() {
   local what=$1; shift

@@ -3,6 +3,7 @@
 
 #include <CGAL/Polygon_mesh_processing/orientation.h>
 #include <cmath>
+#include <random>
 
 #include "dcshell/certify.h"
 #include "dcshell/convex_hull.h"
@@ -147,6 +148,35 @@ BOOST_AUTO_TEST_CASE(certify_sees_an_overlap_far_below_floating_tolerance) {
   BOOST_REQUIRE(r.overlaps.size() == 1u);
   BOOST_TEST(r.overlaps[0].volume > 0.0);
   BOOST_TEST(r.overlaps[0].volume < 1e-11);
+}
+
+BOOST_AUTO_TEST_CASE(convexity_agrees_with_every_vertex_against_every_face) {
+  // The certificate walks the exact hull instead of testing every vertex against every face;
+  // on random hulls with one vertex moved (in or out, by a little or a lot) both must agree.
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int convex = 0, not_convex = 0;
+  for (int trial = 0; trial < 200; ++trial) {
+    std::vector<Point3> pts;
+    for (int i = 0; i < 40; ++i) pts.emplace_back(u(rng), u(rng), u(rng));
+    Mesh m = convex_hull_mesh(pts);
+    auto vit = m.vertices().begin();
+    std::advance(vit, trial % m.number_of_vertices());
+    const Point3 p = m.point(*vit);
+    const double s = 1 + (trial % 2 ? 1 : -1) * std::pow(10.0, -1 - trial % 7);
+    m.point(*vit) = Point3(p.x() * s, p.y() * s, p.z() * s);
+    bool brute = true;
+    for (auto f : m.faces()) {
+      auto h = m.halfedge(f);
+      const Point3 &a = m.point(m.source(h)), &b = m.point(m.target(h)), &c = m.point(m.target(m.next(h)));
+      for (auto v : m.vertices()) brute &= CGAL::orientation(a, b, c, m.point(v)) != CGAL::POSITIVE;
+    }
+    const ConvexityVerdict v = check_convexity(m);
+    BOOST_TEST(v.convex == brute, "trial " << trial << ": " << v.reason);
+    (brute ? convex : not_convex)++;
+  }
+  BOOST_TEST(convex > 20);  // both verdicts occur
+  BOOST_TEST(not_convex > 20);
 }
 
 BOOST_AUTO_TEST_CASE(convexity_verdicts) {
