@@ -19,6 +19,12 @@ struct RemeshOptions {
   /// Finish by re-triangulating flat facets (cut faces above all) by their fattest triangulation
   /// (fatten_flat_facets): free in faces, about 1e-9 of their size in depth.
   bool fatten_flat_facets = true;
+  /// ... and may spend the faces simplification saved (up to the input's face count) on Steiner
+  /// points inside the facets that gain most from them.
+  bool steiner_points = true;
+  /// Collapses ordered by the fatness they gain per unit of added volume (SimplifyOptions::
+  /// order_by_gain) rather than least added volume first.
+  bool order_by_gain = true;
   /// Called after each iteration with the working mesh (convex; for benchmarks and progress).
   std::function<void(int iteration, const Mesh& mesh)> on_iteration;
 };

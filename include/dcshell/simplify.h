@@ -44,6 +44,9 @@ struct SimplifyOptions {
   /// Skip a collapse whose new faces are less fat (area-weighted) than the faces they replace:
   /// volume is then spent only where it helps the net. Off for plain face-count reduction.
   bool fatter_only = false;
+  /// Order collapses by the area-weighted fatness they gain per unit of added volume (free ones
+  /// first) instead of least added volume first.
+  bool order_by_gain = false;
 };
 
 struct SimplifyStats {
