@@ -16,6 +16,8 @@ struct RemeshOptions {
   int iterations = 10;               ///< simplify + smooth rounds (the paper: 10)
   double max_volume_increase = 0.05; ///< bound on (V_after - V_before) / V_before (the paper: 5%)
   std::size_t target_faces = 0;      ///< optional lower bound on the face count (0: none)
+  /// Faces the result may have (0: the input's): Steiner points may spend up to this many.
+  std::size_t max_faces = 0;
   /// Finish by re-triangulating flat facets (cut faces above all) by their fattest triangulation
   /// (fatten_flat_facets): free in faces, about 1e-9 of their size in depth.
   bool fatten_flat_facets = true;

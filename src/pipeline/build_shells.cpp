@@ -241,7 +241,13 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     // Shells are independent once their constraints are fixed: one per core.
     parallel_for(res.shells.size(), [&](std::size_t k) {
       auto& s = res.shells[k];
-      s.mesh = remesh_convex_shell(s.mesh, cons[k], remesh_opt, &s.remesh);
+      // The faces the hull's simplification saved may buy Steiner points in the shell: up to the
+      // faces of the same cuts through the part's original hull (what the plain shell would have).
+      RemeshOptions o = remesh_opt;
+      std::vector<CutPlane> keep;
+      for (const auto& c : s.cuts) keep.push_back(c.plane);
+      if (remesh_opt.steiner_points) o.max_faces = trim_shell(original[s.part], keep).number_of_faces();
+      s.mesh = remesh_convex_shell(s.mesh, cons[k], o, &s.remesh);
       s.remeshed = true;
     });
   }

@@ -110,8 +110,8 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
     const double first_sink = st.flat.max_inward;
     fo.max_volume = v0 * (1 + r) * (1 + 1e-12);
     // The faces collapses saved may buy Steiner points inside large facets (cut faces above all).
-    const std::size_t now = triangle_count(out);
-    fo.extra_faces = options.steiner_points && faces0 > now ? faces0 - now : 0;
+    const std::size_t now = triangle_count(out), allowed = options.max_faces > 0 ? options.max_faces : faces0;
+    fo.extra_faces = options.steiner_points && allowed > now ? allowed - now : 0;
     out = fatten_flat_facets(out, constraints, fo, &st.flat);
     st.flat.max_inward += first_sink;  // the two sinks add up at most
   }

@@ -131,8 +131,8 @@ std::vector<SteinerMesh> refine_convex_polygon(const std::vector<Vec2>& corners,
     if (dt.number_of_vertices() != n + 1) break;  // fell on an existing point
     v->info() = int(n);
     handles.push_back(v);
-    for (int it = 0; it < 3 && smooth(dt, handles, corners, diam); ++it) {
-    }
+    for (int it = 0; it < 3; ++it)
+      if (!smooth(dt, handles, corners, diam)) break;
     if (!covers_polygon(dt, corners.size(), handles.size())) break;
     SteinerMesh s;
     for (const auto& h : handles) s.interior.push_back(v2(h->point()));
