@@ -70,7 +70,7 @@ double boundary_distance(const std::vector<Vec2>& c, const Vec2& p) {
 bool next_point(const DT& dt, const std::vector<Vec2>& corners, double diam, Vec2& out) {
   double best_r = 0, worst = 0;
   bool found = false;
-  Vec2 fallback;
+  Vec2 fallback = Vec2::Zero();
   for (auto f = dt.finite_faces_begin(); f != dt.finite_faces_end(); ++f) {
     const P2 cc = dt.circumcenter(f);
     const double r = std::sqrt(CGAL::squared_distance(cc, f->vertex(0)->point()));
