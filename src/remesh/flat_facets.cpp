@@ -389,55 +389,55 @@ bool fatten(const Mesh& mesh, const ShellConstraints& constraints, const FlatFac
   for (const std::vector<Plan>& tries : plans) {
     bool done = false;
     for (const Plan& plan : tries) {
-    // Outward when the constraints allow it (nothing is given up), else inward.
-    for (int side : {+1, -1}) {
-      if (side < 0 && (!options.allow_inward || plan.depth > options.max_sink * plan.diam)) break;
-      const Vec w = side * g.normal[std::size_t(plan.k)];
-      std::vector<Point3> moved, extra;
-      bool ok = true;
-      for (std::size_t i = 0; i < plan.loop.size() && ok; ++i) {
-        // Outward a concave cap, inward a convex dent: either way the hull's faces there are the
-        // triangulation (the heights are convex over it).
-        const double rise = plan.depth * (side > 0 ? 1 - plan.h[i] : plan.h[i]);
-        if (!plan.extra.empty() && rise <= 1e-6 * plan.depth) {  // a Steiner dome's corner that stays
-          moved.push_back(pts[plan.loop[i].idx()]);
-          continue;
+      // Outward when the constraints allow it (nothing is given up), else inward.
+      for (int side : {+1, -1}) {
+        if (side < 0 && (!options.allow_inward || plan.depth > options.max_sink * plan.diam)) break;
+        const Vec w = side * g.normal[std::size_t(plan.k)];
+        std::vector<Point3> moved, extra;
+        bool ok = true;
+        for (std::size_t i = 0; i < plan.loop.size() && ok; ++i) {
+          // Outward a concave cap, inward a convex dent: either way the hull's faces there are the
+          // triangulation (the heights are convex over it).
+          const double rise = plan.depth * (side > 0 ? 1 - plan.h[i] : plan.h[i]);
+          if (!plan.extra.empty() && rise <= 1e-6 * plan.depth) {  // a Steiner dome's corner that stays
+            moved.push_back(pts[plan.loop[i].idx()]);
+            continue;
+          }
+          const Vec u = move_direction(mesh, g, domed, plan.k, plan.loop[i], w, side > 0);
+          // Added to where an earlier facet may have moved this corner (within this facet's plane).
+          const Vec x = vec(pts[plan.loop[i].idx()]) + rise * u;
+          moved.emplace_back(x.x(), x.y(), x.z());
+          ok = u.squaredNorm() > 0 && constraints.satisfied_by(moved.back());
         }
-        const Vec u = move_direction(mesh, g, domed, plan.k, plan.loop[i], w, side > 0);
-        // Added to where an earlier facet may have moved this corner (within this facet's plane).
-        const Vec x = vec(pts[plan.loop[i].idx()]) + rise * u;
-        moved.emplace_back(x.x(), x.y(), x.z());
-        ok = u.squaredNorm() > 0 && constraints.satisfied_by(moved.back());
-      }
-      for (std::size_t j = 0; j < plan.extra.size() && ok; ++j) {
-        // A Steiner point rounded a unit past a constraint plane goes a few units further in,
-        // far less than its margin above the hull of the others.
-        const double rise = plan.depth * (side > 0 ? 1 - plan.h[plan.loop.size() + j] : plan.h[plan.loop.size() + j]);
-        const Vec x = plan.extra[j] + rise * w;
-        const double unit = ulp_noise({x});
-        ok = false;
-        for (double push : {0.0, 1.0, 2.0, 4.0}) {
-          const Vec y = x - push * unit * g.normal[std::size_t(plan.k)];
-          const Point3 pt(y.x(), y.y(), y.z());
-          if (constraints.satisfied_by(pt)) { extra.push_back(pt); ok = true; break; }
+        for (std::size_t j = 0; j < plan.extra.size() && ok; ++j) {
+          // A Steiner point rounded a unit past a constraint plane goes a few units further in,
+          // far less than its margin above the hull of the others.
+          const double rise = plan.depth * (side > 0 ? 1 - plan.h[plan.loop.size() + j] : plan.h[plan.loop.size() + j]);
+          const Vec x = plan.extra[j] + rise * w;
+          const double unit = ulp_noise({x});
+          ok = false;
+          for (double push : {0.0, 1.0, 2.0, 4.0}) {
+            const Vec y = x - push * unit * g.normal[std::size_t(plan.k)];
+            const Point3 pt(y.x(), y.y(), y.z());
+            if (constraints.satisfied_by(pt)) { extra.push_back(pt); ok = true; break; }
+          }
         }
-      }
-      if (!ok) continue;
-      for (std::size_t i = 0; i < plan.loop.size(); ++i) {
-        const V v = plan.loop[i];
-        if (side < 0) {
-          sank[v.idx()] = 1;
-          st.max_inward = std::max(st.max_inward, (vec(moved[i]) - vec(mesh.point(v))).norm());
+        if (!ok) continue;
+        for (std::size_t i = 0; i < plan.loop.size(); ++i) {
+          const V v = plan.loop[i];
+          if (side < 0) {
+            sank[v.idx()] = 1;
+            st.max_inward = std::max(st.max_inward, (vec(moved[i]) - vec(mesh.point(v))).norm());
+          }
+          pts[v.idx()] = moved[i];
         }
-        pts[v.idx()] = moved[i];
+        pts.insert(pts.end(), extra.begin(), extra.end());
+        st.steiner += extra.size();
+        ++(side > 0 ? st.outward : st.inward);
+        done = true;
+        break;
       }
-      pts.insert(pts.end(), extra.begin(), extra.end());
-      st.steiner += extra.size();
-      ++(side > 0 ? st.outward : st.inward);
-      done = true;
-      break;
-    }
-    if (done) break;
+      if (done) break;
     }
   }
   if (st.outward + st.inward == 0) return false;
