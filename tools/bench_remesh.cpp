@@ -48,6 +48,41 @@ using namespace dcshell;
 
 namespace {
 
+// Where a set of shells' area is: on a cut face (all corners within 1e-7 of the shell's size of
+// one of its cut planes) or not, and in which fatness band.
+struct Breakdown {
+  double cut_a = 0, cut_fa = 0, other_a = 0, other_fa = 0;
+  double band[5] = {0, 0, 0, 0, 0};  // area with fatness in [0, .1), [.1, .2), ... [.4, .5]
+  std::size_t cut_faces = 0, faces = 0;
+  void add(const Mesh& m, const std::vector<CutPlane>& cuts) {
+    const auto box = CGAL::bbox_3(m.points().begin(), m.points().end());
+    const double size = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
+    for (auto f : m.faces()) {
+      auto h = m.halfedge(f);
+      const Point3 &a = m.point(m.source(h)), &b = m.point(m.target(h)), &c = m.point(m.target(m.next(h)));
+      bool on = false;
+      for (const CutPlane& p : cuts) {
+        bool all = true;
+        for (const Point3* q : {&a, &b, &c}) all = all && std::abs(p.eval({q->x(), q->y(), q->z()})) <= 1e-7 * size;
+        on = on || all;
+      }
+      const double A = std::sqrt(CGAL::to_double(CGAL::squared_area(a, b, c))), fat = triangle_fatness(a, b, c);
+      (on ? cut_a : other_a) += A;
+      (on ? cut_fa : other_fa) += A * fat;
+      cut_faces += on;
+      ++faces;
+      band[std::min(4, int(fat * 10))] += A;
+    }
+  }
+  void print(const std::string& name, const char* what) const {
+    const double t = cut_a + other_a;
+    std::fprintf(stderr, "%s %s: cut faces %.0f%% of area (%zu of %zu faces) at %.4f, rest at %.4f; area by fatness band:",
+                 name.c_str(), what, 100 * cut_a / t, cut_faces, faces, cut_a > 0 ? cut_fa / cut_a : 0, other_a > 0 ? other_fa / other_a : 0);
+    for (double b : band) std::fprintf(stderr, " %.0f%%", 100 * b / t);
+    std::fprintf(stderr, "\n");
+  }
+};
+
 // Area-weighted fatness accumulated over several meshes.
 struct FatSum {
   double fa = 0, a = 0;
@@ -135,7 +170,8 @@ int main(int argc, char** argv) {
       "model", po::value(&only), "only this model")("iterations", po::value(&iterations)->default_value(100), "curve length")(
       "repeat", po::value(&repeat)->default_value(3), "timing runs (median)")(
       "hulls", po::value(&hulls_on)->default_value(true), "hull table and plots")(
-      "shells", po::value(&shells)->default_value(true), "shell table (runs the pipeline)");
+      "shells", po::value(&shells)->default_value(true), "shell table (runs the pipeline)")(
+      "breakdown", "per model: where the paper pipeline's area and fatness are (stderr)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   const fs::path root = fs::path(data) / "composite";
@@ -234,6 +270,18 @@ int main(int argc, char** argv) {
       meshes.push_back(s.mesh);
     }
     for (const auto& s : paper.shells) f1.add(s.mesh), n1 += s.mesh.number_of_faces();
+    if (vm.count("breakdown")) {
+      Breakdown b0, b1;
+      auto planes = [](const Shell& s) {
+        std::vector<CutPlane> p;
+        for (const auto& c : s.cuts) p.push_back(c.plane);
+        return p;
+      };
+      for (const auto& s : plain.shells) b0.add(s.mesh, planes(s));
+      for (const auto& s : paper.shells) b1.add(s.mesh, planes(s));
+      b0.print(dir.filename().string(), "plain");
+      b1.print(dir.filename().string(), "paper");
+    }
     // The pipeline's constraints for its shells: neighbour planes and the shell's own cuts.
     std::vector<ShellConstraints> cons = neighbour_constraints(meshes);
     for (std::size_t k = 0; k < meshes.size(); ++k)

@@ -32,20 +32,26 @@ struct FlatFacetOptions {
   bool allow_inward = true;
   /// Upper bound on the volume of the result (the remesh budget); +inf for none.
   double max_volume = 0;
+  /// Faces the result may have beyond the input's: each Steiner point (a point inside a facet,
+  /// on its dome) costs two. They go where they gain the most area x fatness.
+  std::size_t extra_faces = 0;
 };
 
 struct FlatFacetStats {
   std::size_t facets = 0;          ///< facets of two or more triangles with all corners on their boundary
   std::size_t outward = 0, inward = 0;  ///< facets re-triangulated by an outward / inward dome
   double max_inward = 0;           ///< largest inward displacement of a vertex (model units)
+  std::size_t steiner = 0;         ///< Steiner points added
   double fatness_before = 0, fatness_after = 0;
 };
 
 /// Re-triangulates every facet of a closed, exactly convex triangle mesh (two or more triangles
 /// whose normals agree within flat_angle, every vertex on the facet's boundary) by its fattest
-/// triangulation, made the hull's by a dome. The result is the convex hull (exact predicates) of
-/// the moved points: closed and exactly convex, with the same vertices and face count; every
-/// moved point satisfies `constraints` exactly, its volume is at most options.max_volume (when
+/// triangulation, made the hull's by a dome; with options.extra_faces, the facets that gain most
+/// get interior points too (their Delaunay triangulation, domed by a paraboloid). The result is
+/// the convex hull (exact predicates) of the moved points: closed and exactly convex, with every
+/// vertex of the input plus the Steiner points and at most extra_faces more faces; every
+/// moved or added point satisfies `constraints` exactly, its volume is at most options.max_volume (when
 /// positive), and it is returned only when its weighted fatness is higher; otherwise `mesh`
 /// comes back unchanged. Deterministic (no dependence on addresses).
 Mesh fatten_flat_facets(const Mesh& mesh, const ShellConstraints& constraints, const FlatFacetOptions& options = {},

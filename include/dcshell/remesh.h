@@ -16,9 +16,17 @@ struct RemeshOptions {
   int iterations = 10;               ///< simplify + smooth rounds (the paper: 10)
   double max_volume_increase = 0.05; ///< bound on (V_after - V_before) / V_before (the paper: 5%)
   std::size_t target_faces = 0;      ///< optional lower bound on the face count (0: none)
+  /// Faces the result may have (0: the input's): Steiner points may spend up to this many.
+  std::size_t max_faces = 0;
   /// Finish by re-triangulating flat facets (cut faces above all) by their fattest triangulation
   /// (fatten_flat_facets): free in faces, about 1e-9 of their size in depth.
   bool fatten_flat_facets = true;
+  /// ... and may spend the faces simplification saved (up to the input's face count) on Steiner
+  /// points inside the facets that gain most from them.
+  bool steiner_points = true;
+  /// Collapses ordered by the fatness they gain per unit of added volume (SimplifyOptions::
+  /// order_by_gain) rather than least added volume first.
+  bool order_by_gain = true;
   /// Called after each iteration with the working mesh (convex; for benchmarks and progress).
   std::function<void(int iteration, const Mesh& mesh)> on_iteration;
 };
@@ -34,15 +42,17 @@ struct RemeshStats {
 
 /// Simplifies and regularises one convex shell. The result is the convex_hull_3 of its vertices
 /// (closed, outward, exactly convex triangles, double coordinates) and, checked exactly on those
-/// doubles, contains `shell` and satisfies `constraints`; it has at most the faces of `shell` and
-/// volume <= (1 + max_volume_increase) * volume(shell) (floating-point volumes). Each iteration is
-/// one simplification pass (an independent set of cheapest collapses, each only if its new faces
-/// are fatter than those it removes) then one smoothing sweep,
+/// doubles, contains `shell` and satisfies `constraints`; it has at most the faces of `shell` (or
+/// options.max_faces) and volume <= (1 + max_volume_increase) * volume(shell) (floating-point
+/// volumes). Each iteration is one simplification pass (an independent set of collapses, by gain
+/// per volume or cheapest first, each only if its new faces are fatter than those it removes)
+/// then one smoothing sweep,
 /// both within the whole volume budget; the first N iterations
 /// of a run are the same whatever N, and it stops early once an iteration changes nothing.
 /// Vertices on a constraint plane stay on it or inside, so cut faces stay where they were.
 /// With options.fatten_flat_facets the result's flat facets are finally re-triangulated
-/// (flat_facets.h): a facet on a constraint plane may then sink by about 1e-9 of its size, the
+/// (flat_facets.h), with Steiner points in the faces left (options.steiner_points): a facet on a
+/// constraint plane may then sink by about 1e-9 of its size, the
 /// only place where the result does not contain `shell` exactly (stats->flat.max_inward says how far).
 /// Throws InputError if `shell` is not exactly convex and closed or violates `constraints`.
 Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints, const RemeshOptions& options,

@@ -2,7 +2,8 @@
 // 2000). Every edge collapse moves the two end points to one new vertex chosen by a small LP
 // (CGAL's QP solver): outside the plane of every face around the edge, so each new tetrahedron
 // adds volume and the shell keeps enclosing what it enclosed; inside every constraint plane, so
-// it keeps its distance from its neighbours; least added volume first.
+// it keeps its distance from its neighbours; least added volume first, or (order_by_gain) most
+// fatness gained per unit of added volume first.
 #pragma once
 #include <array>
 #include <cstddef>
@@ -44,6 +45,9 @@ struct SimplifyOptions {
   /// Skip a collapse whose new faces are less fat (area-weighted) than the faces they replace:
   /// volume is then spent only where it helps the net. Off for plain face-count reduction.
   bool fatter_only = false;
+  /// Order collapses by the area-weighted fatness they gain per unit of added volume (free ones
+  /// first) instead of least added volume first.
+  bool order_by_gain = false;
 };
 
 struct SimplifyStats {

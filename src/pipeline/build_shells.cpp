@@ -101,10 +101,17 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     original[i] = exact_hull(parts[i].points, int(i));
     hull_mesh[i] = convex_hull_mesh(parts[i].points);
   }
-  if (opt.simplify_iterations > 0)
+  if (opt.simplify_iterations > 0) {
+    // Steiner points in a hull's facets would mostly be cut away, and they spend the faces the
+    // shells may use on their cut faces. Collapses least volume first here: ordered by gain, the
+    // hulls come out fatter but the shells cut from them less fat (measured on the shared models).
+    RemeshOptions hull_opt = remesh_opt;
+    hull_opt.steiner_points = false;
+    hull_opt.order_by_gain = false;
     parallel_for(n, [&](std::size_t i) {
-      hull_mesh[i] = remesh_convex_shell(hull_mesh[i], std::vector<CutPlane>{}, remesh_opt);
+      hull_mesh[i] = remesh_convex_shell(hull_mesh[i], std::vector<CutPlane>{}, hull_opt);
     });
+  }
   for (std::size_t i = 0; i < n; ++i)
     hull[i] = opt.simplify_iterations > 0 ? exact_hull(mesh_points(hull_mesh[i]), int(i)) : original[i];
   clock.lap("hulls");
@@ -234,7 +241,13 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     // Shells are independent once their constraints are fixed: one per core.
     parallel_for(res.shells.size(), [&](std::size_t k) {
       auto& s = res.shells[k];
-      s.mesh = remesh_convex_shell(s.mesh, cons[k], remesh_opt, &s.remesh);
+      // The faces the hull's simplification saved may buy Steiner points in the shell: up to the
+      // faces of the same cuts through the part's original hull (what the plain shell would have).
+      RemeshOptions o = remesh_opt;
+      std::vector<CutPlane> keep;
+      for (const auto& c : s.cuts) keep.push_back(c.plane);
+      if (remesh_opt.steiner_points) o.max_faces = trim_shell(original[s.part], keep).number_of_faces();
+      s.mesh = remesh_convex_shell(s.mesh, cons[k], o, &s.remesh);
       s.remeshed = true;
     });
   }

@@ -12,6 +12,7 @@
 #include "dcshell/convex_hull.h"
 #include "dcshell/fatness.h"
 #include "remesh/star.h"
+#include "remesh/steiner.h"
 
 namespace dcshell {
 namespace {
@@ -23,6 +24,10 @@ using remesh_detail::vec;
 using Vec = Eigen::Vector3d;
 
 constexpr std::size_t kMaxCorners = 400;
+// Steiner points: at most this many in one facet, and only in facets holding at least this share
+// of the shell's area (refining costs time; small facets gain little area x fatness).
+constexpr std::size_t kMaxSteinerPerFacet = 48;
+constexpr double kMinSteinerArea = 0.01;
 
 // Faces joined across edges that are flat within the angle; groups numbered by their first face.
 struct Groups {
@@ -229,53 +234,242 @@ double ulp_noise(const std::vector<Vec>& p) {
   return 8 * big * std::numeric_limits<double>::epsilon();
 }
 
-// What doming one facet takes: its corners in order, its normal, heights in [0, 1], depth.
+// A facet's corners in order and its frame: origin c (the corners' centroid), in-plane axes e1, e2.
+struct Facet {
+  int k = -1;
+  std::vector<V> loop;
+  std::vector<Eigen::Vector2d> q;  // corners in the frame
+  Vec c, e1, e2;
+  double dev = 0, diam = 0, noise = 0;
+  double area = 0, current = 0;  // area, and sum of area x fatness of its triangles now
+};
+
+// What doming one facet takes: its corners in order, heights in [0, 1] (corners, then the
+// Steiner points), depth, and the Steiner points on the facet's plane.
 struct Plan {
   int k = -1;
   std::vector<V> loop;
   std::vector<double> h;
   double depth = 0;
   double diam = 0;
+  std::vector<Vec> extra;
 };
 
-// The plan for facet k, or none when it is not a disk of boundary corners, is not flat enough,
-// would not get fatter, or its dome would have to be deep to beat the rounding noise.
-bool plan_facet(const Mesh& mesh, const Groups& g, int k, const FlatFacetOptions& options, Plan& plan) {
-  if (g.faces[k].size() < 2) return false;
-  plan.k = k;
-  plan.loop = boundary_loop(mesh, g, k);
+// Facet k as a convex polygon of boundary corners, flat to 1e-6 of its size; false when it is not.
+bool facet_geometry(const Mesh& mesh, const Groups& g, int k, Facet& fc) {
+  fc.k = k;
+  fc.loop = boundary_loop(mesh, g, k);
   // The dynamic programme is cubic in the corners: a facet of more corners keeps its triangles.
-  if (plan.loop.size() < 4 || plan.loop.size() > kMaxCorners) return false;
+  if (fc.loop.size() < 3 || fc.loop.size() > kMaxCorners) return false;
   std::vector<Vec> p;
-  for (V v : plan.loop) p.push_back(vec(mesh.point(v)));
+  for (V v : fc.loop) p.push_back(vec(mesh.point(v)));
   const Vec n = g.normal[k];
-  const Vec c = std::accumulate(p.begin(), p.end(), Vec(Vec::Zero())) / double(p.size());
-  const Vec e1 = n.unitOrthogonal(), e2 = n.cross(e1);
-  std::vector<Eigen::Vector2d> q;
-  double dev = 0, diam = 0;
+  fc.c = std::accumulate(p.begin(), p.end(), Vec(Vec::Zero())) / double(p.size());
+  fc.e1 = n.unitOrthogonal(), fc.e2 = n.cross(fc.e1);
   for (const Vec& x : p) {
-    q.emplace_back((x - c).dot(e1), (x - c).dot(e2));
-    dev = std::max(dev, std::abs((x - c).dot(n)));
+    fc.q.emplace_back((x - fc.c).dot(fc.e1), (x - fc.c).dot(fc.e2));
+    fc.dev = std::max(fc.dev, std::abs((x - fc.c).dot(n)));
   }
   for (const Vec& x : p)
-    for (const Vec& y : p) diam = std::max(diam, (x - y).norm());
-  if (!(diam > 0) || dev > 1e-6 * diam) return false;
-  const Triangulation t = fattest_triangulation(p, q, 1e-10 * diam * diam);
-  if (t.score < 0) return false;
-  double current = 0;
+    for (const Vec& y : p) fc.diam = std::max(fc.diam, (x - y).norm());
+  if (!(fc.diam > 0) || fc.dev > 1e-6 * fc.diam) return false;
+  // The dome must rise above the facet's own unevenness and the coordinates' rounding.
+  fc.noise = fc.dev + ulp_noise(p);
+  fc.area = g.area[k];
   for (F f : g.faces[k]) {
     const H h = mesh.halfedge(f);
     const Point3 &a = mesh.point(mesh.source(h)), &b = mesh.point(mesh.target(h)), &cc = mesh.point(mesh.target(mesh.next(h)));
-    current += std::sqrt(CGAL::to_double(CGAL::squared_area(a, b, cc))) * triangle_fatness(a, b, cc);
+    fc.current += std::sqrt(CGAL::to_double(CGAL::squared_area(a, b, cc))) * triangle_fatness(a, b, cc);
   }
-  if (!(t.score > current * (1 + 1e-6))) return false;
+  return true;
+}
+
+// The plan realising the facet's fattest triangulation of its corners, or none when it would not
+// get fatter or its dome would have to be deep to beat the rounding noise.
+bool plan_corners(const Facet& fc, const Triangulation& t, const FlatFacetOptions& options, Plan& plan) {
+  if (fc.loop.size() < 4 || t.score < 0 || !(t.score > fc.current * (1 + 1e-6))) return false;
+  plan.k = fc.k;
+  plan.loop = fc.loop;
   double margin = 0;
-  plan.h = dome_heights(t, q, &margin);
-  // The dome must rise above the facet's own unevenness and the coordinates' rounding.
-  const double noise = dev + ulp_noise(p);
-  plan.depth = std::max(options.depth * diam, 8 * noise / std::max(margin, 1e-300));
-  plan.diam = diam;
-  return margin > 0 && plan.depth <= options.max_depth * diam;
+  plan.h = dome_heights(t, fc.q, &margin);
+  plan.depth = std::max(options.depth * fc.diam, 8 * fc.noise / std::max(margin, 1e-300));
+  plan.diam = fc.diam;
+  return margin > 0 && plan.depth <= options.max_depth * fc.diam;
+}
+
+// The plan realising a Delaunay triangulation with interior points (steiner.h).
+bool plan_steiner(const Facet& fc, const remesh_detail::SteinerMesh& sm, const FlatFacetOptions& options, Plan& plan) {
+  plan.k = fc.k;
+  plan.loop = fc.loop;
+  double margin = 0;
+  plan.h = remesh_detail::paraboloid_heights(fc.q, sm.interior, &margin);
+  plan.depth = std::max(options.depth * fc.diam, 8 * fc.noise / std::max(margin, 1e-300));
+  plan.diam = fc.diam;
+  plan.extra.clear();
+  for (const auto& x : sm.interior) {
+    plan.extra.push_back(fc.c + x.x() * fc.e1 + x.y() * fc.e2);
+    if (!plan.extra.back().allFinite()) return false;
+  }
+  return margin > 0 && plan.depth <= options.max_depth * fc.diam;
+}
+
+// Steiner points for the facets, at most `points` in all: greedily where the fatness gained
+// (area x fatness) per point is largest, over prefixes of each facet's refinement sequence.
+// Returns, per facet, the refinement chosen (empty: none).
+std::vector<remesh_detail::SteinerMesh> allocate_steiner(const std::vector<Facet>& facets, const std::vector<double>& base,
+                                                         std::size_t points, double min_area) {
+  std::vector<remesh_detail::SteinerMesh> chosen(facets.size());
+  std::vector<std::vector<remesh_detail::SteinerMesh>> seq(facets.size());
+  for (std::size_t i = 0; i < facets.size(); ++i)
+    if (facets[i].area >= min_area && facets[i].loop.size() >= 4) seq[i] = remesh_detail::refine_convex_polygon(facets[i].q, std::min(points, kMaxSteinerPerFacet));
+  std::vector<std::size_t> used(facets.size(), 0);
+  std::vector<double> now = base;
+  std::size_t left = points;
+  while (left > 0) {
+    double best = 0;
+    std::size_t bi = 0, bk = 0;
+    for (std::size_t i = 0; i < facets.size(); ++i)
+      for (std::size_t k = used[i] + 1; k <= seq[i].size() && k - used[i] <= left; ++k) {
+        const double rate = (seq[i][k - 1].score - now[i]) / double(k - used[i]);
+        if (rate > best) best = rate, bi = i, bk = k;
+      }
+    if (!(best > 0)) break;
+    left -= bk - used[bi];
+    used[bi] = bk;
+    now[bi] = seq[bi][bk - 1].score;
+    chosen[bi] = seq[bi][bk - 1];
+  }
+  return chosen;
+}
+
+}  // namespace
+
+namespace {
+
+// One attempt with at most `steiner_points` interior points; false (mesh unchanged) when the
+// result would fail a check.
+bool fatten(const Mesh& mesh, const ShellConstraints& constraints, const FlatFacetOptions& options,
+            std::size_t steiner_points, FlatFacetStats& st, Mesh& out) {
+  const Groups g = flat_groups(mesh, options.flat_angle);
+  std::vector<Facet> facets;
+  std::vector<double> base;  // each facet's best score without Steiner points
+  std::vector<Triangulation> tri;
+  double total_area = 0;
+  for (double a : g.area) total_area += a;
+  for (int k = 0; k < int(g.faces.size()); ++k) {
+    st.facets += g.faces[k].size() >= 2;
+    Facet fc;
+    if (!facet_geometry(mesh, g, k, fc)) continue;
+    Triangulation t;
+    if (g.faces[k].size() >= 2 && fc.loop.size() >= 4) t = fattest_triangulation(
+        [&] { std::vector<Vec> p; for (V v : fc.loop) p.push_back(vec(mesh.point(v))); return p; }(), fc.q,
+        1e-10 * fc.diam * fc.diam);
+    base.push_back(std::max(fc.current, t.score));
+    tri.push_back(std::move(t));
+    facets.push_back(std::move(fc));
+  }
+  // Only facets big enough to matter get Steiner points (the refinement costs time).
+  const std::vector<remesh_detail::SteinerMesh> steiner =
+      steiner_points > 0 ? allocate_steiner(facets, base, steiner_points, kMinSteinerArea * total_area)
+                         : std::vector<remesh_detail::SteinerMesh>(facets.size());
+  // Per facet the plans to try in turn: with Steiner points, then its corners only.
+  std::vector<std::vector<Plan>> plans;
+  std::vector<char> domed(g.faces.size(), 0);
+  for (std::size_t i = 0; i < facets.size(); ++i) {
+    std::vector<Plan> tries;
+    Plan with, without;
+    if (!steiner[i].interior.empty() && plan_steiner(facets[i], steiner[i], options, with)) tries.push_back(std::move(with));
+    if (plan_corners(facets[i], tri[i], options, without)) tries.push_back(std::move(without));
+    if (tries.empty()) continue;
+    domed[std::size_t(facets[i].k)] = 1;
+    plans.push_back(std::move(tries));
+  }
+  std::vector<Point3> pts = mesh_points(mesh);  // moved in place, by vertex index; Steiner points appended
+  std::vector<char> sank(pts.size(), 0);
+  for (const std::vector<Plan>& tries : plans) {
+    bool done = false;
+    for (const Plan& plan : tries) {
+      // Outward when the constraints allow it (nothing is given up), else inward.
+      for (int side : {+1, -1}) {
+        if (side < 0 && (!options.allow_inward || plan.depth > options.max_sink * plan.diam)) break;
+        const Vec w = side * g.normal[std::size_t(plan.k)];
+        std::vector<Point3> moved, extra;
+        bool ok = true;
+        for (std::size_t i = 0; i < plan.loop.size() && ok; ++i) {
+          // Outward a concave cap, inward a convex dent: either way the hull's faces there are the
+          // triangulation (the heights are convex over it).
+          const double rise = plan.depth * (side > 0 ? 1 - plan.h[i] : plan.h[i]);
+          if (!plan.extra.empty() && rise <= 1e-6 * plan.depth) {  // a Steiner dome's corner that stays
+            moved.push_back(pts[plan.loop[i].idx()]);
+            continue;
+          }
+          const Vec u = move_direction(mesh, g, domed, plan.k, plan.loop[i], w, side > 0);
+          // Added to where an earlier facet may have moved this corner (within this facet's plane).
+          const Vec x = vec(pts[plan.loop[i].idx()]) + rise * u;
+          moved.emplace_back(x.x(), x.y(), x.z());
+          ok = u.squaredNorm() > 0 && constraints.satisfied_by(moved.back());
+        }
+        for (std::size_t j = 0; j < plan.extra.size() && ok; ++j) {
+          // A Steiner point rounded a unit past a constraint plane goes a few units further in,
+          // far less than its margin above the hull of the others.
+          const double rise = plan.depth * (side > 0 ? 1 - plan.h[plan.loop.size() + j] : plan.h[plan.loop.size() + j]);
+          const Vec x = plan.extra[j] + rise * w;
+          const double unit = ulp_noise({x});
+          ok = false;
+          for (double push : {0.0, 1.0, 2.0, 4.0}) {
+            const Vec y = x - push * unit * g.normal[std::size_t(plan.k)];
+            const Point3 pt(y.x(), y.y(), y.z());
+            if (constraints.satisfied_by(pt)) { extra.push_back(pt); ok = true; break; }
+          }
+        }
+        if (!ok) continue;
+        for (std::size_t i = 0; i < plan.loop.size(); ++i) {
+          const V v = plan.loop[i];
+          if (side < 0) {
+            sank[v.idx()] = 1;
+            st.max_inward = std::max(st.max_inward, (vec(moved[i]) - vec(mesh.point(v))).norm());
+          }
+          pts[v.idx()] = moved[i];
+        }
+        pts.insert(pts.end(), extra.begin(), extra.end());
+        st.steiner += extra.size();
+        ++(side > 0 ? st.outward : st.inward);
+        done = true;
+        break;
+      }
+      if (done) break;
+    }
+  }
+  if (st.outward + st.inward == 0) return false;
+  // Accept only a hull that kept every vertex, encloses every vertex that did not sink, fits the
+  // volume bound and is fatter. A corner moved within a neighbouring face's plane may leave its
+  // old place a rounding unit outside: such corners are pushed out a few units more.
+  std::vector<Point3> keep;
+  std::vector<V> keep_v;
+  for (V v : mesh.vertices())
+    if (!sank[v.idx()]) keep.push_back(mesh.point(v)), keep_v.push_back(v);
+  for (int round = 0;; ++round) {
+    out = convex_hull_mesh(pts);
+    if (out.number_of_vertices() != pts.size()) return false;
+    std::vector<V> outside;
+    for (std::size_t i = 0; i < keep.size(); ++i)
+      if (!remesh_detail::mesh_encloses(out, {keep[i]})) outside.push_back(keep_v[i]);
+    if (outside.empty()) break;
+    if (round == 8) return false;
+    for (V v : outside) {
+      Vec normal = Vec::Zero();
+      for (F f : CGAL::faces_around_target(mesh.halfedge(v), mesh)) normal += g.normal[std::size_t(g.of_face[f.idx()])];
+      const Vec x = vec(pts[v.idx()]) + std::ldexp(ulp_noise({vec(pts[v.idx()])}), round) * normal.normalized();
+      pts[v.idx()] = Point3(x.x(), x.y(), x.z());
+      if (!constraints.satisfied_by(pts[v.idx()])) return false;
+    }
+  }
+  if (options.max_volume > 0 && remesh_detail::mesh_volume(out) > options.max_volume) return false;
+  if (out.number_of_faces() > mesh.number_of_faces() + 2 * steiner_points) return false;
+  const double fat = weighted_fatness(out);
+  if (!(fat > st.fatness_before)) return false;
+  st.fatness_after = fat;
+  return true;
 }
 
 }  // namespace
@@ -286,79 +480,17 @@ Mesh fatten_flat_facets(const Mesh& mesh, const ShellConstraints& constraints, c
   st.fatness_before = st.fatness_after = weighted_fatness(mesh);
   if (stats) *stats = st;
   if (mesh.is_empty() || mesh.has_garbage()) return mesh;
-  const Groups g = flat_groups(mesh, options.flat_angle);
-  std::vector<Plan> plans;
-  std::vector<char> domed(g.faces.size(), 0);
-  for (int k = 0; k < int(g.faces.size()); ++k) {
-    Plan plan;
-    st.facets += g.faces[k].size() >= 2;
-    if (!plan_facet(mesh, g, k, options, plan)) continue;
-    domed[std::size_t(k)] = 1;
-    plans.push_back(std::move(plan));
-  }
-  std::vector<Point3> pts = mesh_points(mesh);  // moved in place, by vertex index
-  std::vector<char> sank(pts.size(), 0);
-  for (const Plan& plan : plans) {
-    // Outward when the constraints allow it (nothing is given up), else inward.
-    for (int side : {+1, -1}) {
-      if (side < 0 && (!options.allow_inward || plan.depth > options.max_sink * plan.diam)) break;
-      const Vec w = side * g.normal[std::size_t(plan.k)];
-      std::vector<Point3> moved;
-      bool ok = true;
-      for (std::size_t i = 0; i < plan.loop.size() && ok; ++i) {
-        // Outward a concave cap, inward a convex dent: either way the hull's faces there are the
-        // triangulation (the heights are convex over it).
-        const double rise = plan.depth * (side > 0 ? 1 - plan.h[i] : plan.h[i]);
-        const Vec u = move_direction(mesh, g, domed, plan.k, plan.loop[i], w, side > 0);
-        // Added to where an earlier facet may have moved this corner (within this facet's plane).
-        const Vec x = vec(pts[plan.loop[i].idx()]) + rise * u;
-        moved.emplace_back(x.x(), x.y(), x.z());
-        ok = u.squaredNorm() > 0 && constraints.satisfied_by(moved.back());
-      }
-      if (!ok) continue;
-      for (std::size_t i = 0; i < plan.loop.size(); ++i) {
-        const V v = plan.loop[i];
-        if (side < 0) {
-          sank[v.idx()] = 1;
-          st.max_inward = std::max(st.max_inward, (vec(moved[i]) - vec(mesh.point(v))).norm());
-        }
-        pts[v.idx()] = moved[i];
-      }
-      ++(side > 0 ? st.outward : st.inward);
-      break;
+  // With Steiner points first; should that fail a check, without.
+  for (std::size_t points : {options.extra_faces / 2, std::size_t(0)}) {
+    FlatFacetStats s = st;
+    Mesh out;
+    if (fatten(mesh, constraints, options, points, s, out)) {
+      if (stats) *stats = s;
+      return out;
     }
+    if (points == 0) break;
   }
-  if (st.outward + st.inward == 0) return mesh;
-  // Accept only a hull that kept every vertex, encloses every vertex that did not sink, fits the
-  // volume bound and is fatter. A corner moved within a neighbouring face's plane may leave its
-  // old place a rounding unit outside: such corners are pushed out a few units more.
-  std::vector<Point3> keep;
-  std::vector<V> keep_v;
-  for (V v : mesh.vertices())
-    if (!sank[v.idx()]) keep.push_back(mesh.point(v)), keep_v.push_back(v);
-  Mesh out;
-  for (int round = 0;; ++round) {
-    out = convex_hull_mesh(pts);
-    if (out.number_of_vertices() != mesh.number_of_vertices()) return mesh;
-    std::vector<V> outside;
-    for (std::size_t i = 0; i < keep.size(); ++i)
-      if (!remesh_detail::mesh_encloses(out, {keep[i]})) outside.push_back(keep_v[i]);
-    if (outside.empty()) break;
-    if (round == 8) return mesh;
-    for (V v : outside) {
-      Vec normal = Vec::Zero();
-      for (F f : CGAL::faces_around_target(mesh.halfedge(v), mesh)) normal += g.normal[std::size_t(g.of_face[f.idx()])];
-      const Vec x = vec(pts[v.idx()]) + std::ldexp(ulp_noise({vec(pts[v.idx()])}), round) * normal.normalized();
-      pts[v.idx()] = Point3(x.x(), x.y(), x.z());
-      if (!constraints.satisfied_by(pts[v.idx()])) return mesh;
-    }
-  }
-  if (options.max_volume > 0 && remesh_detail::mesh_volume(out) > options.max_volume) return mesh;
-  const double fat = weighted_fatness(out);
-  if (!(fat > st.fatness_before)) return mesh;
-  st.fatness_after = fat;
-  if (stats) *stats = st;
-  return out;
+  return mesh;
 }
 
 }  // namespace dcshell

@@ -14,6 +14,7 @@ struct Candidate {
   bool ok = false;
   double cost = 0;  ///< added volume
   Point3 w;
+  double d_fa = 0, d_area = 0;  ///< change in the sums of area x fatness and of area
 };
 
 class Workspace {

@@ -77,6 +77,7 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
     so.target_faces = options.target_faces;
     so.single_pass = true;
     so.fatter_only = true;
+    so.order_by_gain = options.order_by_gain;
     const double max_volume = v0 * (1 + r) * (1 - kDomeReserve);
     for (int it = 1; it <= n; ++it) {
       const std::size_t c = ws.simplify_pass(constraints, so, sst);
@@ -108,6 +109,9 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
     // loop above left that much of the budget.
     const double first_sink = st.flat.max_inward;
     fo.max_volume = v0 * (1 + r) * (1 + 1e-12);
+    // The faces collapses saved may buy Steiner points inside large facets (cut faces above all).
+    const std::size_t now = triangle_count(out), allowed = options.max_faces > 0 ? options.max_faces : faces0;
+    fo.extra_faces = options.steiner_points && allowed > now ? allowed - now : 0;
     out = fatten_flat_facets(out, constraints, fo, &st.flat);
     st.flat.max_inward += first_sink;  // the two sinks add up at most
   }

@@ -33,28 +33,46 @@ bool is_flat_target(const Mesh& m, const Star& s, V target) {
   return true;
 }
 
-// Area-weighted fatness of the faces a replacement removes, and of the cone that replaces them.
-double local_fatness_star(const Mesh& m, const Star& s) {
+// Sums of area x fatness and of area over the faces a replacement removes, and over the cone
+// that replaces them.
+struct FatArea {
   double fa = 0, a = 0;
+  double ratio() const { return a > 0 ? fa / a : 0; }
+};
+
+FatArea star_fat_area(const Mesh& m, const Star& s) {
+  FatArea r;
   for (F f : s.faces) {
     H h = m.halfedge(f);
-    const Point3 &p = m.point(m.source(h)), &q = m.point(m.target(h)), &r = m.point(m.target(m.next(h)));
-    const double area = std::sqrt(CGAL::squared_area(p, q, r));
-    fa += area * triangle_fatness(p, q, r);
-    a += area;
+    const Point3 &p = m.point(m.source(h)), &q = m.point(m.target(h)), &t = m.point(m.target(m.next(h)));
+    const double area = std::sqrt(CGAL::squared_area(p, q, t));
+    r.fa += area * triangle_fatness(p, q, t);
+    r.a += area;
   }
-  return a > 0 ? fa / a : 0;
+  return r;
 }
 
-double local_fatness_cone(const Mesh& m, const Star& s, const Point3& w) {
-  double fa = 0, a = 0;
+FatArea cone_fat_area(const Mesh& m, const Star& s, const Point3& w) {
+  FatArea r;
   for (std::size_t i = 0; i < s.ring.size(); ++i) {
-    const Point3 &q = m.point(s.ring[i]), &r = m.point(s.ring[(i + 1) % s.ring.size()]);
-    const double area = std::sqrt(CGAL::squared_area(w, q, r));
-    fa += area * triangle_fatness(w, q, r);
-    a += area;
+    const Point3 &q = m.point(s.ring[i]), &t = m.point(s.ring[(i + 1) % s.ring.size()]);
+    const double area = std::sqrt(CGAL::squared_area(w, q, t));
+    r.fa += area * triangle_fatness(w, q, t);
+    r.a += area;
   }
-  return a > 0 ? fa / a : 0;
+  return r;
+}
+
+double local_fatness_star(const Mesh& m, const Star& s) { return star_fat_area(m, s).ratio(); }
+double local_fatness_cone(const Mesh& m, const Star& s, const Point3& w) { return cone_fat_area(m, s, w).ratio(); }
+
+// The candidate at w, with what it changes in area x fatness and area.
+Candidate make_candidate(const Mesh& m, const Star& s, const Point3& w, double cost) {
+  const FatArea a = star_fat_area(m, s), b = cone_fat_area(m, s, w);
+  Candidate c{true, cost, w};
+  c.d_fa = b.fa - a.fa;
+  c.d_area = b.a - a.a;
+  return c;
 }
 
 Candidate best_position(const Mesh& m, const Star& s, const ShellConstraints& constraints, bool fatter_only) {
@@ -62,7 +80,7 @@ Candidate best_position(const Mesh& m, const Star& s, const ShellConstraints& co
   if (!s.valid) return best;
   for (V r : s.removed)
     if (is_flat_target(m, s, r) && (!fatter_only || local_fatness_cone(m, s, m.point(r)) >= local_fatness_star(m, s)))
-      return {true, 0.0, m.point(r)};
+      return make_candidate(m, s, m.point(r), 0.0);
 
   const Eigen::Vector3d pu = vec(m.point(s.removed[0])), pv = vec(m.point(s.removed[1]));
   Frame frame{0.5 * (pu + pv), 0.0};
@@ -181,17 +199,18 @@ Candidate best_position(const Mesh& m, const Star& s, const ShellConstraints& co
     if (!found) return best;
   }
   if (fatter_only && local_fatness_cone(m, s, w) < local_fatness_star(m, s)) return best;
-  return {true, volume_change(m, s, w), w};
+  return make_candidate(m, s, w, volume_change(m, s, w));
 }
 
 struct Entry {
-  double cost;
+  double key;   // queue order
+  double cost;  // added volume
   std::size_t h;  // halfedge index: deterministic tie break
   V u, v;
   unsigned su, sv;  // vertex stamps when computed
   bool fresh;       // computed in this pass (not taken from the cache)
   Point3 w;
-  bool operator>(const Entry& o) const { return cost != o.cost ? cost > o.cost : h > o.h; }
+  bool operator>(const Entry& o) const { return key != o.key ? key > o.key : h > o.h; }
 };
 
 }  // namespace
@@ -232,11 +251,20 @@ std::size_t Workspace::simplify_pass(const ShellConstraints& constraints, const 
   fatter_only_ = options.fatter_only;
   std::vector<char> locked(mesh.number_of_vertices() + mesh.number_of_removed_vertices(), 0);  // indices stay valid: no garbage collection here
   std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> queue;
+  // By gain: the change in area-weighted fatness (to first order) per unit of added volume,
+  // collapses that gain first; those that do not, least volume first, after them.
+  const double fat = options.order_by_gain ? weighted_fatness(mesh) : 0.0;
+  const double eps = 1e-12 * std::abs(volume);
   auto push_edge = [&](H h, bool fresh) {
     const V u = mesh.source(h), v = mesh.target(h);
     const Candidate c = edge_candidate(h, constraints, fresh);
     if (!c.ok) { ++st.infeasible; return; }
-    queue.push({c.cost, std::size_t(h), u, v, stamp_[u], stamp_[v], fresh, c.w});
+    double key = c.cost;
+    if (options.order_by_gain) {
+      const double gain = c.d_fa - fat * c.d_area;
+      if (gain > 0) key = -gain / (std::max(c.cost, 0.0) + eps);
+    }
+    queue.push({key, c.cost, std::size_t(h), u, v, stamp_[u], stamp_[v], fresh, c.w});
   };
   for (auto e : mesh.edges()) push_edge(mesh.halfedge(e), false);
 
@@ -248,7 +276,10 @@ std::size_t Workspace::simplify_pass(const ShellConstraints& constraints, const 
     if (mesh.is_removed(h) || mesh.source(h) != e.u || mesh.target(h) != e.v || stamp_[e.u] != e.su ||
         stamp_[e.v] != e.sv || locked[e.u] || locked[e.v])
       continue;  // stale: the neighbourhood changed since this entry was computed
-    if (volume + std::max(e.cost, 0.0) > options.max_volume) break;  // cheapest first: nothing else fits
+    if (volume + std::max(e.cost, 0.0) > options.max_volume) {
+      if (options.order_by_gain) continue;
+      break;  // cheapest first: nothing else fits
+    }
     if (mesh.number_of_faces() < options.target_faces + 2 || mesh.number_of_vertices() <= 4) break;
     const Star s = edge_star(mesh, h);
     if (!s.valid || !CGAL::Euler::does_satisfy_link_condition(mesh.edge(h), mesh) ||
