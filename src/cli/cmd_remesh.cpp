@@ -50,18 +50,23 @@ int run_remesh(int argc, char** argv) {
     std::vector<std::string> inputs;
     std::string out;
     RemeshOptions ro;
+    long long target_faces = 0;  // signed, so "-3" is refused instead of wrapping around
     opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (required)")(
         "iterations,n", po::value(&ro.iterations)->default_value(10), "simplify + smooth rounds (the paper: 10)")(
         "max-volume-increase,r", po::value(&ro.max_volume_increase)->default_value(0.05),
         "bound on the volume increase of each shell, as a ratio (the paper: 0.05)")(
-        "target-faces", po::value(&ro.target_faces)->default_value(0), "do not simplify below this many faces (0: no bound)")(
+        "target-faces", po::value(&target_faces)->default_value(0), "do not simplify below this many faces (0: no bound)")(
         "no-domes", "keep flat facets on neighbour planes exactly where they were (no fattest re-triangulation by 1e-9 domes)")(
+        "no-timings", "leave times out of report.json (byte-identical reruns)")(
         "force,f", "replace an existing non-empty output directory");
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
     if (inputs.empty()) throw InputError("no input shells (see 'dcshell remesh --help')");
     if (out.empty()) throw InputError("--out DIR is required");
     if (ro.iterations < 0) throw InputError("--iterations must be >= 0");
+    const bool timings = !vm.count("no-timings");
+    if (target_faces < 0) throw InputError("--target-faces must be >= 0");
+    ro.target_faces = static_cast<std::size_t>(target_faces);
     ro.fatten_flat_facets = vm.count("no-domes") == 0;
     if (!(ro.max_volume_increase >= 0) || !std::isfinite(ro.max_volume_increase))
       throw InputError("--max-volume-increase must be a finite number >= 0");
@@ -132,7 +137,7 @@ int run_remesh(int argc, char** argv) {
       }
       json.end_array();
       write_certification(json, rep, files);
-      json.field("time_s", secs);
+      if (timings) json.field("time_s", secs);
       json.end_object();
     });
     dir.commit();

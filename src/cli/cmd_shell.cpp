@@ -172,15 +172,19 @@ int run_shell(int argc, char** argv) {
     opt.fatten_flat_facets = vm.count("no-domes") == 0;
     opt.cut.method = parse_cut_method(method);
     opt.cut.seed = seed;
-    if (!(opt.cut.lambda >= 0)) throw InputError("--lambda must be >= 0");
-    if (!(opt.cut.svm_c > 0)) throw InputError("--svm-c must be > 0");
+    // `!(x >= 0)` also refuses NaN; infinities are refused explicitly (they would reach the
+    // report as null and the optimisers as overflow).
+    if (!(opt.cut.lambda >= 0) || !std::isfinite(opt.cut.lambda)) throw InputError("--lambda must be a finite number >= 0");
+    if (!(opt.cut.svm_c > 0) || !std::isfinite(opt.cut.svm_c)) throw InputError("--svm-c must be a finite number > 0");
     if (opt.cut.svm_samples < 32 || opt.cut.svm_samples > 10000000)
       throw InputError("--svm-samples must be in [32, 1e7]");
     if (opt.max_sweeps < 0) throw InputError("--sweeps must be >= 0");
-    if (!(opt.sweep_tolerance >= 0)) throw InputError("--sweep-tolerance must be >= 0");
+    if (!(opt.sweep_tolerance >= 0) || !std::isfinite(opt.sweep_tolerance))
+      throw InputError("--sweep-tolerance must be a finite number >= 0");
     if (!(opt.absorb_fraction > 0 && opt.absorb_fraction <= 1)) throw InputError("--absorb-fraction must be in (0, 1]");
     if (opt.simplify_iterations < 0) throw InputError("--simplify-iterations must be >= 0");
-    if (!(opt.max_volume_increase >= 0)) throw InputError("--max-volume-increase must be >= 0");
+    if (!(opt.max_volume_increase >= 0) || !std::isfinite(opt.max_volume_increase))
+      throw InputError("--max-volume-increase must be a finite number >= 0");
     opt.global_sweeps = vm.count("global-sweeps") > 0;
     const bool quiet = vm.count("quiet");
 

@@ -145,6 +145,7 @@ int run_unfold(int argc, char** argv) {
     double scale = 0, fold_slack = 0;
     long long fold_work = 0;
     opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (created atomically)")(
+        "no-timings", "leave times out of unfold.json (byte-identical reruns)")(
         "force,f", "replace an existing non-empty output directory")(
         "heuristic", po::value(&heuristic)->default_value("best"),
         "steepest|flat|min-perimeter|random|greedy|ga|best (best: every heuristic with retries; ga: then a genetic search; greedy: overlap-aware Kruskal, longest fold first, refusing folds that overlap)")(
@@ -194,6 +195,7 @@ int run_unfold(int argc, char** argv) {
     if (tries < 0 || ga_evaluations < 0) throw InputError("--tries and --ga-evaluations must be >= 0");
     if (vm.count("motion") && frames < 2) throw InputError("--motion-frames must be at least 2");
 
+    const bool timings = !vm.count("no-timings");
     auto t0 = std::chrono::steady_clock::now();
     auto files = expand_inputs(inputs);
     std::vector<Mesh> meshes;
@@ -284,12 +286,12 @@ int run_unfold(int argc, char** argv) {
         json.key("first_net").begin_object();
         json.field("cut_length", s.stats.first.cut_length).field("hull_area", s.stats.first.hull_area);
         json.end_object();
-        json.field("unfold_time_s", s.stats.seconds).field("time_s", s.seconds);
+        if (timings) json.field("unfold_time_s", s.stats.seconds).field("time_s", s.seconds);
         json.end_object();
       }
       json.end_array();
       json.field("all_overlap_free_and_verified", all_good);
-      json.field("time_s", seconds_since(t0));
+      if (timings) json.field("time_s", seconds_since(t0));
       json.end_object();
       os << "\n";
     });

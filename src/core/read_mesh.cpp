@@ -62,15 +62,70 @@ void validate_point(const std::string& file, std::size_t line, const std::array<
   }
 }
 
+// Statements of the OBJ specification that carry no polygon geometry: texture and normal
+// coordinates, materials, smoothing/merging groups, display attributes, lines and points, and
+// free-form curves and surfaces (not polygonised here).
+bool is_ignored_obj_statement(const std::string& key) {
+  static const char* const kIgnored[] = {"vn", "vt", "vp", "s", "mg", "usemtl", "mtllib", "usemap", "maplib",
+                                         "lod", "bevel", "c_interp", "d_interp", "shadow_obj", "trace_obj",
+                                         "ctech", "stech", "l", "p", "cstype", "deg", "bmat", "step", "curv",
+                                         "curv2", "surf", "parm", "trim", "hole", "scrv", "sp", "end", "con",
+                                         "call", "csh"};
+  for (const char* k : kIgnored)
+    if (key == k) return true;
+  return false;
+}
+
+// A token for an error message: quoted, at most 24 characters, bytes that are not printable
+// ASCII shown as \xNN (a binary file must not spill control characters onto the terminal).
+std::string printable_token(const std::string& t) {
+  std::string out = "'";
+  for (std::size_t i = 0; i < t.size() && i < 24; ++i) {
+    const unsigned char c = static_cast<unsigned char>(t[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out.push_back(static_cast<char>(c));
+    } else {
+      char buf[8];
+      std::snprintf(buf, sizeof buf, "\\x%02X", c);
+      out += buf;
+    }
+  }
+  out += t.size() > 24 ? "...'" : "'";
+  bool binary = false;
+  for (unsigned char c : t) binary |= (c < 0x20 && c != '\t') || c == 0x7f;
+  return binary ? out + " (binary data: not a text OBJ file?)" : out;
+}
+
 PolygonSoup read_obj(const std::string& path, std::istream& in) {
   PolygonSoup soup;
   std::string line;
   std::size_t lineno = 0;
   std::size_t current_group = 0;
   bool have_group = false;
-  while (std::getline(in, line)) {
-    ++lineno;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
+  // Lines end in \n, \r\n or a lone \r (old Mac exports); a trailing backslash continues a
+  // line (the OBJ specification); a UTF-8 byte-order mark before the first statement is skipped.
+  auto next_line = [&](std::string& out) {
+    out.clear();
+    bool any = false;
+    for (int c; (c = in.get()) != EOF;) {
+      any = true;
+      if (c == '\n' || c == '\r') {
+        if (c == '\r' && in.peek() == '\n') in.get();
+        ++lineno;
+        if (!out.empty() && out.back() == '\\') {
+          out.back() = ' ';
+          continue;
+        }
+        return true;
+      }
+      out.push_back(static_cast<char>(c));
+    }
+    if (any) ++lineno;
+    return any;
+  };
+  const std::size_t first = lineno;
+  while (next_line(line)) {
+    if (lineno == first + 1 && line.compare(0, 3, "\xEF\xBB\xBF") == 0) line.erase(0, 3);
     const char* p = line.data();
     const char* end = p + line.size();
     while (p < end && (*p == ' ' || *p == '\t')) ++p;
@@ -82,7 +137,12 @@ PolygonSoup read_obj(const std::string& path, std::istream& in) {
       std::array<double, 3> q;
       for (double& c : q)
         if (!parse_double(p, end, c)) fail(path, lineno, "malformed vertex line");
-      validate_point(path, lineno, q);  // a fourth (w) or colour values may follow: ignored
+      // A fourth (w) or colour values may follow (ignored); anything else is a broken line.
+      for (double extra; p < end;) {
+        while (p < end && (*p == ' ' || *p == '\t')) ++p;
+        if (p < end && !parse_double(p, end, extra)) fail(path, lineno, "malformed vertex line (text after the coordinates)");
+      }
+      validate_point(path, lineno, q);
       if (soup.points.size() >= kMaxElements) fail(path, lineno, "too many vertices");
       soup.points.push_back(q);
     } else if (key == "f") {
@@ -122,15 +182,124 @@ PolygonSoup read_obj(const std::string& path, std::istream& in) {
         }
         have_group = true;
       }
-    } else if (key == "vn" || key == "vt" || key == "vp" || key == "s" || key == "usemtl" || key == "mtllib" ||
-               key == "l" || key == "p") {
-      continue;  // attributes irrelevant to geometry
+    } else if (is_ignored_obj_statement(key)) {
+      continue;  // attributes, grouping and free-form data irrelevant to the polygons
     } else {
-      fail(path, lineno, "unknown OBJ statement '" + key + "'");
+      fail(path, lineno, "unknown OBJ statement " + printable_token(key));
     }
   }
   if (in.bad()) fail(path, 0, "read error");
   return soup;
+}
+
+// Binary PLY files state their sizes (element counts in the header, a vertex count before each
+// face's indices) and CGAL's reader allocates what they say: a 200-byte file declaring a face
+// of 4 billion vertices made it allocate gigabytes. So every stated size is checked against the
+// bytes the file actually holds before CGAL reads it. ASCII files need no check (a count there
+// is followed by as many tokens, or the reader stops).
+void check_binary_ply_sizes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string line, format;
+  struct Property {
+    int size = 0, count_size = 0;  // count_size > 0: a list
+  };
+  struct Element {
+    std::string name;
+    unsigned long long count = 0;
+    std::vector<Property> props;
+  };
+  std::vector<Element> elements;
+  auto type_size = [&](const std::string& t) {
+    if (t == "char" || t == "uchar" || t == "int8" || t == "uint8") return 1;
+    if (t == "short" || t == "ushort" || t == "int16" || t == "uint16") return 2;
+    if (t == "int" || t == "uint" || t == "float" || t == "int32" || t == "uint32" || t == "float32") return 4;
+    if (t == "double" || t == "float64") return 8;
+    fail(path, 0, "malformed ply file (unknown property type '" + t + "')");
+  };
+  while (std::getline(in, line)) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key == "format") ls >> format;
+    else if (key == "element") {
+      Element e;
+      ls >> e.name >> e.count;
+      if (!ls) fail(path, 0, "malformed ply file (bad element line)");
+      elements.push_back(e);
+    } else if (key == "property" && !elements.empty()) {
+      std::string t, a, b;
+      ls >> t;
+      Property pr;
+      if (t == "list") {
+        ls >> a >> b;
+        pr.count_size = type_size(a);
+        pr.size = type_size(b);
+      } else {
+        pr.size = type_size(t);
+      }
+      elements.back().props.push_back(pr);
+    } else if (key == "end_header") {
+      break;
+    }
+  }
+  std::error_code ec;
+  const unsigned long long size = fs::file_size(path, ec);
+  if (format == "ascii") {
+    // Walk the tokens as the header lays them out: a list's count must be possible in the bytes
+    // left (each entry takes at least two).
+    std::string tok;
+    for (const auto& e : elements) {
+      if (e.count > size / 2)
+        fail(path, 0, "malformed ply file (header declares " + std::to_string(e.count) + " " + e.name +
+                          " records, more than the file holds)");
+      for (unsigned long long r = 0; r < e.count; ++r)
+        for (const auto& pr : e.props) {
+          if (!(in >> tok)) return;  // truncated: CGAL's reader says so
+          if (pr.count_size == 0) continue;
+          const unsigned long long n = std::strtoull(tok.c_str(), nullptr, 10);
+          if (n > size / 2)
+            fail(path, 0, "malformed ply file (" + e.name + " " + std::to_string(r) + " lists " + std::to_string(n) +
+                              " entries, more than the file holds)");
+          for (unsigned long long k = 0; k < n && in >> tok; ++k) {
+          }
+        }
+    }
+    return;
+  }
+  if (format != "binary_little_endian" && format != "binary_big_endian") return;
+  const bool little = format == "binary_little_endian";
+  unsigned long long pos = static_cast<unsigned long long>(in.tellg());
+  for (const auto& e : elements) {
+    unsigned long long fixed = 0;
+    bool lists = false;
+    for (const auto& pr : e.props) lists |= pr.count_size > 0, fixed += pr.count_size > 0 ? 0 : pr.size;
+    if (!lists) {
+      if (fixed > 0 && e.count > (size - std::min(pos, size)) / fixed)
+        fail(path, 0, "malformed ply file (header declares " + std::to_string(e.count) + " " + e.name +
+                          " records, more than the file holds)");
+      pos += e.count * fixed;
+      continue;
+    }
+    for (unsigned long long r = 0; r < e.count; ++r)
+      for (const auto& pr : e.props) {
+        if (pr.count_size == 0) {
+          pos += pr.size;
+          continue;
+        }
+        unsigned char bytes[8] = {0};
+        in.seekg(static_cast<std::streamoff>(pos));
+        if (!in.read(reinterpret_cast<char*>(bytes), pr.count_size))
+          fail(path, 0, "malformed ply file (truncated " + e.name + " data)");
+        unsigned long long n = 0;
+        for (int k = 0; k < pr.count_size; ++k) n = (n << 8) | bytes[little ? pr.count_size - 1 - k : k];
+        pos += pr.count_size;
+        if (n > (size - std::min(pos, size)) / pr.size)
+          fail(path, 0, "malformed ply file (" + e.name + " " + std::to_string(r) + " lists " + std::to_string(n) +
+                            " entries, more than the file holds)");
+        pos += n * pr.size;
+      }
+  }
 }
 
 }  // namespace
@@ -151,8 +320,11 @@ PolygonSoup read_polygon_soup(const std::string& path) {
     std::vector<Point3> pts;
     std::vector<std::vector<std::size_t>> faces;
     bool ok = false;
+    if (ext == ".ply") check_binary_ply_sizes(path);
     try {
       ok = CGAL::IO::read_polygon_soup(path, pts, faces, CGAL::parameters::verbose(false));
+    } catch (const std::bad_alloc&) {
+      fail(path, 0, "malformed " + ext.substr(1) + " file (a stated count is too large)");
     } catch (const std::exception& e) {
       fail(path, 0, std::string("malformed ") + ext.substr(1) + " file (" + e.what() + ")");
     }

@@ -932,7 +932,7 @@ SheetOptions SheetOptions::paper_from_string(const std::string& text) {
     return o;
   }
   throw std::invalid_argument("invalid paper size '" + text +
-                              "': expected a3, a4, a5, letter, legal or WIDTHxHEIGHTmm with positive numbers, "
+                              "': expected a3, a4, a5, letter, legal or WIDTHxHEIGHTmm with positive decimal numbers, "
                               "e.g. 300x200mm");
 }
 

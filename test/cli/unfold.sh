@@ -60,6 +60,9 @@ grep -q '"cut_length": 7[,.]' "$T/out/unfold.json" || grep -q '"cut_length": 7$'
 "$BIN" unfold --out "$T/out2" "$T/cube.obj" "$T/tet.obj" 2> /dev/null || fail "second run"
 cmp -s "$T/out/net_000.obj" "$T/out2/net_000.obj" || fail "net_000.obj differs between runs"
 cmp -s "$T/out/nets.svg" "$T/out2/nets.svg" || fail "nets.svg differs between runs"
+"$BIN" unfold --no-timings --out "$T/nt1" "$T/cube.obj" "$T/tet.obj" 2> /dev/null || fail "--no-timings run"
+"$BIN" unfold --no-timings --out "$T/nt2" "$T/cube.obj" "$T/tet.obj" 2> /dev/null || fail "--no-timings run 2"
+diff -r "$T/nt1" "$T/nt2" > /dev/null || fail "--no-timings outputs differ between runs"
 
 # Every heuristic, PDF sheets, motion frames.
 for h in steepest flat min-perimeter random ga; do

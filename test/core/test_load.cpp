@@ -129,6 +129,63 @@ BOOST_AUTO_TEST_CASE(unknown_format_and_statement) {
   expect_input_error(t.write("s.obj", "v 0 0 0\nbogus 1\n"), "unknown OBJ statement");
 }
 
+BOOST_AUTO_TEST_CASE(obj_line_endings_bom_continuation_and_ignored_statements) {
+  TempDir t;
+  const std::string tet = "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  std::string cr = tet, bom = "\xEF\xBB\xBF" + tet;
+  for (auto& c : cr)
+    if (c == '\n') c = '\r';
+  const std::string cont = "v 0 0 0\nv 1 \\\n 0 0\nv 0 1 0\nv 0 0 1\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n";
+  const std::string extra = "mg 1 0.5\nlod 2\nmaplib a.map\nusemap b\ncstype bezier\n" + tet;
+  for (const auto& [name, text] : std::vector<std::pair<std::string, std::string>>{
+           {"cr.obj", cr}, {"bom.obj", bom}, {"cont.obj", cont}, {"extra.obj", extra}}) {
+    std::vector<std::string> w;
+    auto parts = load_parts({t.write(name, text)}, w);
+    BOOST_TEST(parts.size() == 1u, name);
+    BOOST_TEST(parts[0].points.size() == 4u, name);
+  }
+  // Text after the coordinates that is not a number is a broken line, not ignored.
+  expect_input_error(t.write("junk.obj", "v 0 0 0 junk\n"), ":1: malformed vertex line");
+}
+
+BOOST_AUTO_TEST_CASE(binary_garbage_is_not_echoed) {
+  TempDir t;
+  const std::string garbage = std::string("\x01\x02\xF5\x07\x1B[31m") + std::string(300, '\xAB') + "\n";
+  try {
+    std::vector<std::string> w;
+    load_parts({t.write("g.obj", garbage)}, w);
+    BOOST_ERROR("no error for binary garbage");
+  } catch (const InputError& e) {
+    const std::string msg = e.what();
+    BOOST_TEST(msg.find("binary data") != std::string::npos, msg);
+    BOOST_TEST(msg.size() < 300u);
+    for (unsigned char c : msg) BOOST_TEST((c >= 0x20 && c < 0x7f), "unprintable byte in: " << msg);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(ply_counts_are_checked_against_the_file_size) {
+  TempDir t;
+  const std::string head = "ply\nformat binary_little_endian 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                           "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n";
+  std::string body(36, '\0');             // three vertices at the origin
+  body += std::string("\xFF", 1);         // a face of 255 indices...
+  body += std::string(12, '\0');          // ...of which the file holds 3
+  expect_input_error(t.write("f.ply", head + body), "face 0 lists 255 entries, more than the file holds");
+  const std::string big = "ply\nformat binary_little_endian 1.0\nelement vertex 2000000000\nproperty float x\n"
+                          "property float y\nproperty float z\nend_header\n";
+  expect_input_error(t.write("v.ply", big + std::string(24, '\0')), "declares 2000000000 vertex records");
+  const std::string ascii = "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                            "property float z\nelement face 1\nproperty list uint int vertex_indices\nend_header\n"
+                            "0 0 0\n1 0 0\n0 1 0\n4000000000 0 1 2\n";
+  expect_input_error(t.write("a.ply", ascii), "face 0 lists 4000000000 entries");
+}
+
+BOOST_AUTO_TEST_CASE(a_model_too_small_for_doubles_is_refused) {
+  TempDir t;
+  expect_input_error(t.write("t.obj", "v 0 0 0\nv 1e-170 0 0\nv 0 1e-170 0\nv 0 0 1e-170\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"),
+                     "model is too small");
+}
+
 BOOST_AUTO_TEST_CASE(no_faces) {
   TempDir t;
   expect_input_error(t.write("v.obj", "v 0 0 0\nv 1 0 0\n"), "no faces");
