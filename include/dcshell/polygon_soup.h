@@ -15,4 +15,8 @@ struct PolygonSoup {
   std::vector<std::string> group_names;
 };
 
+/// Faces grouped by connected component (faces sharing a vertex index are connected), each
+/// group in face order, groups in order of their first face.
+std::vector<std::vector<std::size_t>> soup_components(const PolygonSoup& soup);
+
 }  // namespace dcshell

@@ -19,8 +19,8 @@ PolygonSoup read_polygon_soup(const std::string& path);
 Mesh read_mesh(const std::string& path);
 
 /// Reads every object of a mesh file: one mesh per OBJ `o`/`g` group when the file has more
-/// than one (V-HACD and similar tools write all hulls into one OBJ), otherwise one mesh.
-/// Names are "file" or "file#group". Same validation as read_mesh.
+/// than one (V-HACD and similar tools write all hulls into one OBJ), otherwise one per
+/// connected component. Names are "file", "file#group" or "file#k". Same validation as read_mesh.
 std::vector<std::pair<std::string, Mesh>> read_mesh_objects(const std::string& path);
 
 /// Reads a set of meshes given on the command line: directories expand to their mesh files,
@@ -28,7 +28,7 @@ std::vector<std::pair<std::string, Mesh>> read_mesh_objects(const std::string& p
 std::vector<std::pair<std::string, Mesh>> read_mesh_set(const std::vector<std::string>& inputs);
 
 /// Expands command-line inputs: a directory means all mesh files in it (.obj .off .ply .stl,
-/// case-insensitive), in name order, except a `shells.obj` beside `shell_*` files (the combined
+/// case-insensitive; hidden files excluded), in name order, except a `shells.obj` beside `shell_*` files (the combined
 /// copy a `dcshell shell` run writes for viewers); a file is kept as is. Throws InputError for a missing path
 /// or a directory without mesh files.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);

@@ -33,29 +33,6 @@ std::vector<Point3> referenced_points(const PolygonSoup& soup, const std::vector
   return pts;
 }
 
-// Faces grouped by connected component (faces sharing a vertex index are connected).
-std::vector<std::vector<std::size_t>> components(const PolygonSoup& soup) {
-  std::vector<std::size_t> parent(soup.points.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](std::size_t x) {
-    while (parent[x] != x) x = parent[x] = parent[parent[x]];
-    return x;
-  };
-  for (const auto& f : soup.faces)
-    for (std::size_t k = 1; k < f.size(); ++k) parent[find(f[k])] = find(f[0]);
-  std::vector<std::vector<std::size_t>> out;
-  std::vector<long> comp_of_root(soup.points.size(), -1);
-  for (std::size_t f = 0; f < soup.faces.size(); ++f) {
-    std::size_t r = find(soup.faces[f][0]);
-    if (comp_of_root[r] < 0) {
-      comp_of_root[r] = long(out.size());
-      out.emplace_back();
-    }
-    out[comp_of_root[r]].push_back(f);
-  }
-  return out;
-}
-
 }  // namespace
 
 std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector<std::string>& warnings,
@@ -73,7 +50,7 @@ std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector
       for (std::size_t f = 0; f < soup.faces.size(); ++f) groups[soup.face_group[f]].push_back(f);
       for (const auto& g : soup.group_names) names.push_back(base_name(file) + "#" + g);
     } else {
-      groups = components(soup);
+      groups = soup_components(soup);
       for (std::size_t c = 0; c < groups.size(); ++c)
         names.push_back(groups.size() == 1 ? base_name(file) : base_name(file) + "#" + std::to_string(c));
     }

@@ -403,7 +403,19 @@ std::vector<std::pair<std::string, Mesh>> read_mesh_objects(const std::string& p
   PolygonSoup soup = read_polygon_soup(path);
   std::vector<std::pair<std::string, Mesh>> out;
   if (soup.group_names.size() <= 1) {
-    out.emplace_back(path, soup_to_mesh(path, "", soup.points, soup.faces));
+    // No groups: one mesh per connected component, as `dcshell shell` reads parts (a file that
+    // holds all hulls of a decomposition is a set of shells, not one broken shell).
+    const auto comps = soup_components(soup);
+    if (comps.size() == 1) {
+      out.emplace_back(path, soup_to_mesh(path, "", soup.points, soup.faces));
+      return out;
+    }
+    for (std::size_t c = 0; c < comps.size(); ++c) {
+      std::vector<std::vector<std::size_t>> faces;
+      for (auto f : comps[c]) faces.push_back(soup.faces[f]);
+      const std::string tag = "component " + std::to_string(c) + ": ";
+      out.emplace_back(path + "#" + std::to_string(c), soup_to_mesh(path, tag, soup.points, faces));
+    }
     return out;
   }
   std::vector<std::vector<std::vector<std::size_t>>> groups(soup.group_names.size());
@@ -431,7 +443,8 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
     if (fs::is_directory(in, ec)) {
       std::vector<std::string> files;
       for (const auto& e : fs::directory_iterator(in, ec)) {
-        if (!e.is_regular_file()) continue;
+        // Hidden files (".x.obj", macOS "._x.obj" resource forks) are not meshes of the set.
+        if (!e.is_regular_file() || e.path().filename().string().rfind('.', 0) == 0) continue;
         std::string ext = lower_extension(e.path().string());
         if (ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl") files.push_back(e.path().string());
       }

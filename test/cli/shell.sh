@@ -51,6 +51,11 @@ cube 0 1 > "$T/c0.obj"; cube 1 2 > "$T/c1.obj"; cube 0.5 1.5 > "$T/c2.obj"
 "$BIN" check -q "$T/c0.obj" "$T/c2.obj" > "$T/rep.json"; [ $? -eq 1 ] || fail "overlapping cubes certified"
 grep -q '"volume": 0.5' "$T/rep.json" || fail "overlap volume not 0.5"
 
+# One file holding two cubes (no groups): two shells, as `shell` reads it as two parts.
+{ cat "$T/c0.obj"; cube 1 2 | awk '/^f/ { printf "f"; for (i = 2; i <= NF; i++) printf " %d", $i + 8; print ""; next } { print }'; } > "$T/two.obj"
+"$BIN" check -q "$T/two.obj" > "$T/two.json" || fail "two-component file not certified as two shells"
+grep -q 'two.obj#1' "$T/two.json" || fail "second component not named"
+
 # check -o never overwrites an input nor drops a mesh into an input directory; output errors are
 # exit 2 with the reason, before any work.
 mkdir -p "$T/in" && cp "$T/c0.obj" "$T/c1.obj" "$T/in/"
