@@ -2,8 +2,11 @@
 
 #include <unistd.h>
 
+#include <csignal>
+
 #include <cctype>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -25,6 +28,44 @@ bool same_or_inside(const fs::path& inner, const fs::path& outer) {
   for (; bi != b.end(); ++ai, ++bi)
     if (ai == a.end() || *ai != *bi) return false;
   return true;
+}
+
+// Temporary directories alive in this process, removed when SIGINT/SIGTERM/SIGHUP ends it (an
+// interrupted run must not leave ".out.tmp-PID" behind). Best effort: the handler uses the
+// filesystem library, which is not async-signal-safe, then re-raises with the default action.
+constexpr int kMaxTemps = 256;
+volatile std::sig_atomic_t temp_count = 0;
+char temp_paths[kMaxTemps][1024];
+
+extern "C" void remove_temps_and_reraise(int sig) {
+  for (int i = 0; i < temp_count; ++i) {
+    std::error_code ec;
+    if (temp_paths[i][0]) fs::remove_all(temp_paths[i], ec);
+  }
+  std::signal(sig, SIG_DFL);
+  std::raise(sig);
+}
+
+void register_temp(const std::string& path) {
+  static const bool installed = [] {
+    for (int sig : {SIGINT, SIGTERM, SIGHUP}) std::signal(sig, remove_temps_and_reraise);
+    return true;
+  }();
+  (void)installed;
+  for (int i = 0; i < temp_count; ++i)
+    if (!temp_paths[i][0]) {
+      std::snprintf(temp_paths[i], sizeof temp_paths[i], "%s", path.c_str());
+      return;
+    }
+  if (temp_count < kMaxTemps && path.size() < sizeof temp_paths[0]) {
+    std::snprintf(temp_paths[temp_count], sizeof temp_paths[0], "%s", path.c_str());
+    temp_count = temp_count + 1;
+  }
+}
+
+void unregister_temp(const std::string& path) {
+  for (int i = 0; i < temp_count; ++i)
+    if (path == temp_paths[i]) temp_paths[i][0] = 0;
 }
 
 // The system's reason for the last failed stream operation, e.g. " (No space left on device)".
@@ -79,17 +120,18 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 
 AtomicFiles::~AtomicFiles() {
   std::error_code ec;
-  for (const auto& p : pending_) fs::remove(p.first, ec);
+  for (const auto& p : pending_) fs::remove(p.first, ec), unregister_temp(p.first);
 }
 
 void AtomicFiles::write(const std::string& path, const std::function<void(std::ostream&)>& fn) {
   check_output_file(path, inputs_);
   pending_.emplace_back(path + unique_suffix(), path);
+  register_temp(pending_.back().first);
   write_stream(path, pending_.back().first, fn);
 }
 
 void AtomicFiles::commit() {
-  for (const auto& [tmp, target] : pending_) rename_or_throw(tmp, target, target);
+  for (const auto& [tmp, target] : pending_) rename_or_throw(tmp, target, target), unregister_temp(tmp);
   pending_.clear();
 }
 
@@ -107,6 +149,7 @@ AtomicDirectory::AtomicDirectory(const std::string& target, bool force, const st
   if (!t.has_filename()) t = t.parent_path();
   temp_ = (t.parent_path() / ("." + t.filename().string() + unique_suffix())).string();
   fs::remove_all(temp_, ec);
+  register_temp(temp_);
   if (!fs::create_directories(temp_, ec) || ec)
     throw OutputError(target + ": cannot create output directory (" + ec.message() + ")");
 }
@@ -116,6 +159,7 @@ AtomicDirectory::~AtomicDirectory() {
     std::error_code ec;
     fs::remove_all(temp_, ec);
   }
+  unregister_temp(temp_);
 }
 
 std::string AtomicDirectory::path(const std::string& name) const { return (fs::path(temp_) / name).string(); }
