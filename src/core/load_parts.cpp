@@ -5,7 +5,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <array>
 #include <filesystem>
+#include <map>
 #include <numeric>
 
 #include "dcshell/convex_hull.h"
@@ -33,6 +35,34 @@ std::vector<Point3> referenced_points(const PolygonSoup& soup, const std::vector
   return pts;
 }
 
+// Edges (by point coordinates, so per-face duplicated vertices do not matter) that do not lie
+// on exactly two of the faces: 0 for a closed 2-manifold surface. A part is used only through
+// its convex hull, so an open or non-manifold part (Bowser's model has one) is read with a
+// warning rather than refused; commands that need a surface (check, remesh, unfold) refuse it.
+std::size_t bad_edges(const PolygonSoup& soup, const std::vector<std::size_t>& faces) {
+  using P = std::array<double, 3>;
+  std::map<std::pair<P, P>, int> uses;
+  for (std::size_t f : faces) {
+    const auto& F = soup.faces[f];
+    for (std::size_t k = 0; k < F.size(); ++k) {
+      P a = soup.points[F[k]], b = soup.points[F[(k + 1) % F.size()]];
+      if (b < a) std::swap(a, b);
+      ++uses[{a, b}];
+    }
+  }
+  std::size_t bad = 0;
+  for (const auto& [e, n] : uses) bad += n != 2;
+  return bad;
+}
+
+// Adds a part; counts, per file, the parts that are not closed 2-manifold surfaces.
+void add_part(std::vector<Part>& parts, std::map<std::string, std::vector<std::string>>& open_parts,
+              const std::string& name, const std::string& file, const PolygonSoup& soup,
+              const std::vector<std::size_t>& faces) {
+  if (bad_edges(soup, faces)) open_parts[file].push_back(name);
+  parts.push_back({name, file, referenced_points(soup, faces)});
+}
+
 }  // namespace
 
 std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector<std::string>& warnings,
@@ -40,6 +70,7 @@ std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector
   std::vector<std::string> files = expand_inputs(inputs);
   if (files.empty()) throw InputError("no input files");
   std::vector<Part> parts;
+  std::map<std::string, std::vector<std::string>> open_parts;  // file -> parts that are open surfaces
   if (files.size() == 1) {
     const std::string& file = files[0];
     PolygonSoup soup = read_polygon_soup(file);
@@ -56,15 +87,23 @@ std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector
     }
     for (std::size_t g = 0; g < groups.size(); ++g) {
       if (groups[g].empty()) continue;
-      parts.push_back({names[g], file, referenced_points(soup, groups[g])});
+      add_part(parts, open_parts, names[g], file, soup, groups[g]);
     }
   } else {
     for (const auto& file : files) {
       PolygonSoup soup = read_polygon_soup(file);
       std::vector<std::size_t> all(soup.faces.size());
       std::iota(all.begin(), all.end(), 0);
-      parts.push_back({base_name(file), file, referenced_points(soup, all)});
+      add_part(parts, open_parts, base_name(file), file, soup, all);
     }
+  }
+  // Segmented meshes have open parts: normal input, one line per file says so.
+  for (const auto& [file, names] : open_parts) {
+    std::string list;
+    for (std::size_t k = 0; k < names.size() && k < 3; ++k) list += (k ? ", " : "") + names[k];
+    if (names.size() > 3) list += ", ...";
+    warnings.push_back(file + ": " + std::to_string(names.size()) + " part(s) are open or non-manifold surfaces (" +
+                       list + "); their convex hulls are used");
   }
   // Scale of the whole shape (its solid parts: a flat sheet is no measure of size), for the
   // "tiny" test.
