@@ -212,8 +212,10 @@ bool inside_polygon(const Poly& P, const Vec3& x) {
 
 // Distance between two convex polygons in 3D (0 when they meet): an edge of one crossing the
 // other, else the least vertex-to-face or edge-to-edge distance (where disjoint convex polygons
-// attain their distance).
-double polygon_distance(const Poly& A, const Poly& B) {
+// attain their distance). `margin` (far above the rounding of the coordinates) lets pairs of
+// edges whose bounding spheres are farther apart than the least distance found plus margin be
+// skipped: they cannot lower the minimum, so the result is the same as without skipping.
+double polygon_distance(const Poly& A, const Poly& B, double margin) {
   auto crosses = [](const Poly& P, const Poly& Q) {
     const int m = static_cast<int>(P.v.size());
     for (int i = 0; i < m; ++i) {
@@ -230,14 +232,31 @@ double polygon_distance(const Poly& A, const Poly& B) {
   double d = kInf;
   auto faces = [&](const Poly& P, const Poly& Q) {
     for (const auto& x : P.v) {
+      const double h = std::abs(Q.n.dot(x - Q.v[0]));
+      if (!(h < d)) continue;  // min(d, h) = d whatever the inside test says
       Vec3 y = x - Q.n * Q.n.dot(x - Q.v[0]);
-      if (inside_polygon(Q, y)) d = std::min(d, std::abs(Q.n.dot(x - Q.v[0])));
+      if (inside_polygon(Q, y)) d = std::min(d, h);
     }
   };
   faces(A, B), faces(B, A);
   const int ma = static_cast<int>(A.v.size()), mb = static_cast<int>(B.v.size());
-  for (int i = 0; i < ma; ++i)
-    for (int j = 0; j < mb; ++j) d = std::min(d, segment_distance(A.v[i], A.v[(i + 1) % ma], B.v[j], B.v[(j + 1) % mb]));
+  // Edge midpoints and half-lengths of B (bounding spheres).
+  thread_local std::vector<Vec3> mid;
+  thread_local std::vector<double> half;
+  mid.resize(mb), half.resize(mb);
+  for (int j = 0; j < mb; ++j) {
+    const Vec3 &b0 = B.v[j], &b1 = B.v[(j + 1) % mb];
+    mid[j] = 0.5 * (b0 + b1), half[j] = 0.5 * (b1 - b0).norm();
+  }
+  for (int i = 0; i < ma; ++i) {
+    const Vec3 &a0 = A.v[i], &a1 = A.v[(i + 1) % ma];
+    const Vec3 ma_i = 0.5 * (a0 + a1);
+    const double ha = 0.5 * (a1 - a0).norm();
+    for (int j = 0; j < mb; ++j) {
+      if ((ma_i - mid[j]).norm() - ha - half[j] > d + margin) continue;  // lower bound above the minimum
+      d = std::min(d, segment_distance(a0, a1, B.v[j], B.v[(j + 1) % mb]));
+    }
+  }
   return d;
 }
 
@@ -311,7 +330,7 @@ class Checker {
   double scale_ = 0, tol_ = 0;
   // Pairs examined so far (stable addresses), found through a dense p x q table while there are
   // at most kDensePieces pieces, else through a hash map.
-  static constexpr int kDensePieces = 1024;
+  static constexpr int kDensePieces = 2048;
   std::deque<PairInfo> pairs_;
   std::vector<int> pair_slot_;
   std::unordered_map<std::uint64_t, int> pair_map_;
@@ -964,7 +983,7 @@ FoldCheckResult Checker::run() {
           h = std::max(d / S, hp);
         }
       } else {
-        double d = polygon_distance(poly_[p], poly_[q]) - tol_;
+        double d = polygon_distance(poly_[p], poly_[q], tol_) - tol_;
         double L = 0, Sp = 0, Sq = 0;
         // up_p is the start of p's way to the root: its levers are this step's first ones.
         const double *lp = &lever_[lever_off_[p]], *lq = &lever_[lever_off_[q]];
