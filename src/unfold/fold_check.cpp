@@ -352,7 +352,8 @@ class Checker {
   std::vector<char> pa_fixed_;
   // Broad phase (sweep and prune on x, kept sorted from step to step).
   std::vector<int> sweep_;
-  std::vector<std::uint64_t> keys_;
+  std::vector<std::pair<int, int>> found_;
+  std::vector<int> bucket_, fill_;
 
   void build_pieces();
   void place(double t);
@@ -463,7 +464,7 @@ void Checker::broad_phase(const std::vector<double>& lo, const std::vector<doubl
     for (; j > 0 && before(x, s[j - 1]); --j) s[j] = s[j - 1];
     s[j] = x;
   }
-  keys_.clear();
+  found_.clear();
   for (int i = 0; i < n; ++i) {
     const int a = s[i];
     const double ahx = hi[3 * a], aly = lo[3 * a + 1], ahy = hi[3 * a + 1], alz = lo[3 * a + 2], ahz = hi[3 * a + 2];
@@ -471,14 +472,19 @@ void Checker::broad_phase(const std::vector<double>& lo, const std::vector<doubl
       const int b = s[j];
       if (lo[3 * b] > ahx) break;  // sorted by low x: no later box reaches a's x range
       if (hi[3 * b] >= lo[3 * a] && hi[3 * b + 1] >= aly && lo[3 * b + 1] <= ahy && hi[3 * b + 2] >= alz && lo[3 * b + 2] <= ahz) {
-        const int p = std::min(a, b), q = std::max(a, b);
-        keys_.push_back((static_cast<std::uint64_t>(p) << 32) | static_cast<std::uint32_t>(q));
+        found_.emplace_back(std::min(a, b), std::max(a, b));
       }
     }
   }
-  std::sort(keys_.begin(), keys_.end());  // deterministic, whatever order the sweep met them in
-  cand.clear();
-  for (std::uint64_t k : keys_) cand.emplace_back(static_cast<int>(k >> 32), static_cast<int>(k & 0xffffffffu));
+  // Sorted (deterministic, whatever order the sweep met them in): a counting sort by p, then
+  // each p's few partners by q.
+  bucket_.assign(n + 1, 0);
+  for (const auto& pq : found_) ++bucket_[pq.first + 1];
+  for (int i = 0; i < n; ++i) bucket_[i + 1] += bucket_[i];
+  fill_.assign(bucket_.begin(), bucket_.end() - 1);
+  cand.resize(found_.size());
+  for (const auto& pq : found_) cand[fill_[pq.first]++] = pq;
+  for (int i = 0; i < n; ++i) std::sort(cand.begin() + bucket_[i], cand.begin() + bucket_[i + 1]);
 }
 
 PairInfo& Checker::info(int p, int q) {
