@@ -2,6 +2,7 @@
 // doc/fold_check.md for the argument).
 #include "dcshell/fold_check.h"
 #include "dcshell/net_overlap.h"
+#include "unfold/box_sweep.h"
 
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/box_intersection_d.h>
@@ -298,7 +299,6 @@ double arc_distance(const Arc& A, const Arc& B) {
   return std::min({point_arc_distance(A.a, B), point_arc_distance(A.b, B), point_arc_distance(B.a, A), point_arc_distance(B.b, A)});
 }
 
-using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
 
 enum class PairKind { hinge, cone, general };
 
@@ -350,14 +350,10 @@ class Checker {
   std::vector<Vec3> pa_vel_, pa_dirs_;
   std::vector<double> pa_L_, pa_hz_, pa_hm_, pa_dz_, pa_dm_;
   std::vector<char> pa_fixed_;
-  // Broad phase (sweep and prune on x, kept sorted from step to step).
-  std::vector<int> sweep_;
-  std::vector<std::pair<int, int>> found_;
-  std::vector<int> bucket_, fill_;
+  unfold_detail::BoxSweep sweep_;  // broad phase
 
   void build_pieces();
   void place(double t);
-  void broad_phase(const std::vector<double>& lo, const std::vector<double>& hi, std::vector<std::pair<int, int>>& cand);
   double lever(int piece, int joint) const {  // |angle| x distance of the piece's bounding sphere to the joint axis
     Vec3 w = centre_[piece] - axis_w_a_[joint];
     return std::abs(pc_[joint].angle) * ((w - w.dot(axis_w_u_[joint]) * axis_w_u_[joint]).norm() + pc_[piece].radius);
@@ -448,43 +444,6 @@ void Checker::place(double t) {
     poly_[b].n = T_[b].R.col(2);
     centre_[b] = T_[b](lift(pc_[b].centre));
   }
-}
-
-// Every pair of boxes (3 doubles lo, hi per piece) that meet as closed boxes, once, sorted
-// (p < q, lexicographic): the same set as CGAL's box_self_intersection_d (closed topology), by a
-// sweep along x over the pieces in order of their boxes' low x. That order is kept from the
-// previous step (the boxes move little), so an insertion sort restores it in about linear time.
-void Checker::broad_phase(const std::vector<double>& lo, const std::vector<double>& hi, std::vector<std::pair<int, int>>& cand) {
-  std::vector<int>& s = sweep_;
-  const int n = static_cast<int>(s.size());
-  auto before = [&](int a, int b) { return lo[3 * a] < lo[3 * b] || (lo[3 * a] == lo[3 * b] && a < b); };
-  for (int i = 1; i < n; ++i) {
-    const int x = s[i];
-    int j = i;
-    for (; j > 0 && before(x, s[j - 1]); --j) s[j] = s[j - 1];
-    s[j] = x;
-  }
-  found_.clear();
-  for (int i = 0; i < n; ++i) {
-    const int a = s[i];
-    const double ahx = hi[3 * a], aly = lo[3 * a + 1], ahy = hi[3 * a + 1], alz = lo[3 * a + 2], ahz = hi[3 * a + 2];
-    for (int j = i + 1; j < n; ++j) {
-      const int b = s[j];
-      if (lo[3 * b] > ahx) break;  // sorted by low x: no later box reaches a's x range
-      if (hi[3 * b] >= lo[3 * a] && hi[3 * b + 1] >= aly && lo[3 * b + 1] <= ahy && hi[3 * b + 2] >= alz && lo[3 * b + 2] <= ahz) {
-        found_.emplace_back(std::min(a, b), std::max(a, b));
-      }
-    }
-  }
-  // Sorted (deterministic, whatever order the sweep met them in): a counting sort by p, then
-  // each p's few partners by q.
-  bucket_.assign(n + 1, 0);
-  for (const auto& pq : found_) ++bucket_[pq.first + 1];
-  for (int i = 0; i < n; ++i) bucket_[i + 1] += bucket_[i];
-  fill_.assign(bucket_.begin(), bucket_.end() - 1);
-  cand.resize(found_.size());
-  for (const auto& pq : found_) cand[fill_[pq.first]++] = pq;
-  for (int i = 0; i < n; ++i) std::sort(cand.begin() + bucket_[i], cand.begin() + bucket_[i + 1]);
 }
 
 PairInfo& Checker::info(int p, int q) {
@@ -909,8 +868,6 @@ FoldCheckResult Checker::run() {
 
   std::vector<double> abs_lever(nb), abs_theta(nb), box_lo(3 * nb), box_hi(3 * nb);
   std::vector<std::pair<int, int>> cand;
-  sweep_.resize(nb);
-  for (int b = 0; b < nb; ++b) sweep_[b] = b;
   lever_off_.assign(nb + 1, 0);
   for (int b = 0; b < nb; ++b) lever_off_[b + 1] = lever_off_[b] + pc_[b].depth;
   lever_.assign(lever_off_[nb], 0.0);
@@ -954,7 +911,7 @@ FoldCheckResult Checker::run() {
       for (auto& v : poly_[b].v)
         for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], v[d] - r), hi[d] = std::max(hi[d], v[d] + r);
     }
-    broad_phase(box_lo, box_hi, cand);
+    sweep_.pairs(box_lo, box_hi, cand);  // sorted: deterministic
     double step = dt;
     int limit_p = -1, limit_q = -1;  // the pair that limits the step (reported at the step limit)
     for (auto [p, q] : cand) {
