@@ -2,6 +2,7 @@
 // doc/fold_check.md for the argument).
 #include "dcshell/fold_check.h"
 #include "dcshell/net_overlap.h"
+#include "unfold/box_sweep.h"
 
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/box_intersection_d.h>
@@ -9,6 +10,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <deque>
 #include <limits>
 #include <map>
 #include <sstream>
@@ -211,8 +213,10 @@ bool inside_polygon(const Poly& P, const Vec3& x) {
 
 // Distance between two convex polygons in 3D (0 when they meet): an edge of one crossing the
 // other, else the least vertex-to-face or edge-to-edge distance (where disjoint convex polygons
-// attain their distance).
-double polygon_distance(const Poly& A, const Poly& B) {
+// attain their distance). `margin` (far above the rounding of the coordinates) lets pairs of
+// edges whose bounding spheres are farther apart than the least distance found plus margin be
+// skipped: they cannot lower the minimum, so the result is the same as without skipping.
+double polygon_distance(const Poly& A, const Poly& B, double margin) {
   auto crosses = [](const Poly& P, const Poly& Q) {
     const int m = static_cast<int>(P.v.size());
     for (int i = 0; i < m; ++i) {
@@ -229,14 +233,31 @@ double polygon_distance(const Poly& A, const Poly& B) {
   double d = kInf;
   auto faces = [&](const Poly& P, const Poly& Q) {
     for (const auto& x : P.v) {
+      const double h = std::abs(Q.n.dot(x - Q.v[0]));
+      if (!(h < d)) continue;  // min(d, h) = d whatever the inside test says
       Vec3 y = x - Q.n * Q.n.dot(x - Q.v[0]);
-      if (inside_polygon(Q, y)) d = std::min(d, std::abs(Q.n.dot(x - Q.v[0])));
+      if (inside_polygon(Q, y)) d = std::min(d, h);
     }
   };
   faces(A, B), faces(B, A);
   const int ma = static_cast<int>(A.v.size()), mb = static_cast<int>(B.v.size());
-  for (int i = 0; i < ma; ++i)
-    for (int j = 0; j < mb; ++j) d = std::min(d, segment_distance(A.v[i], A.v[(i + 1) % ma], B.v[j], B.v[(j + 1) % mb]));
+  // Edge midpoints and half-lengths of B (bounding spheres).
+  thread_local std::vector<Vec3> mid;
+  thread_local std::vector<double> half;
+  mid.resize(mb), half.resize(mb);
+  for (int j = 0; j < mb; ++j) {
+    const Vec3 &b0 = B.v[j], &b1 = B.v[(j + 1) % mb];
+    mid[j] = 0.5 * (b0 + b1), half[j] = 0.5 * (b1 - b0).norm();
+  }
+  for (int i = 0; i < ma; ++i) {
+    const Vec3 &a0 = A.v[i], &a1 = A.v[(i + 1) % ma];
+    const Vec3 ma_i = 0.5 * (a0 + a1);
+    const double ha = 0.5 * (a1 - a0).norm();
+    for (int j = 0; j < mb; ++j) {
+      if ((ma_i - mid[j]).norm() - ha - half[j] > d + margin) continue;  // lower bound above the minimum
+      d = std::min(d, segment_distance(a0, a1, B.v[j], B.v[(j + 1) % mb]));
+    }
+  }
   return d;
 }
 
@@ -278,7 +299,6 @@ double arc_distance(const Arc& A, const Arc& B) {
   return std::min({point_arc_distance(A.a, B), point_arc_distance(A.b, B), point_arc_distance(B.a, A), point_arc_distance(B.b, A)});
 }
 
-using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
 
 enum class PairKind { hinge, cone, general };
 
@@ -308,7 +328,16 @@ class Checker {
   Motion m_;
   std::vector<Piece> pc_;
   double scale_ = 0, tol_ = 0;
-  std::unordered_map<std::uint64_t, PairInfo> pairs_;
+  // Pairs examined so far (stable addresses), found through a dense p x q table while there are
+  // at most kDensePieces pieces, else through a hash map.
+  static constexpr int kDensePieces = 2048;
+  std::deque<PairInfo> pairs_;
+  std::vector<int> pair_slot_;
+  std::unordered_map<std::uint64_t, int> pair_map_;
+  // |angle| x lever of each piece about each hinge on its way to the root (offset per piece),
+  // at the current state: computed once per step, reused by the pairs.
+  std::vector<int> lever_off_;
+  std::vector<double> lever_;
   std::vector<Rigid> T1_;             // pieces in the folded state (t = 1)
   std::vector<Vec3> aa1_, au1_;       // and their hinge axes there
 
@@ -317,6 +346,11 @@ class Checker {
   std::vector<Vec3> axis_w_a_, axis_w_u_;  // hinge axis of each piece in the current state
   std::vector<Poly> poly_;
   std::vector<Vec3> centre_;
+  // Scratch of plane_advance.
+  std::vector<Vec3> pa_vel_, pa_dirs_;
+  std::vector<double> pa_L_, pa_hz_, pa_hm_, pa_dz_, pa_dm_;
+  std::vector<char> pa_fixed_;
+  unfold_detail::BoxSweep sweep_;  // broad phase
 
   void build_pieces();
   void place(double t);
@@ -402,17 +436,31 @@ void Checker::place(double t) {
   poly_.resize(nb);
   centre_.resize(nb);
   for (int b = 0; b < nb; ++b) {
-    poly_[b].v = hull_world(b, T_[b]);
+    // In place: the corner arrays keep their storage from step to step.
+    const auto& H = pc_[b].hull;
+    auto& v = poly_[b].v;
+    v.resize(H.size());
+    for (std::size_t i = 0; i < H.size(); ++i) v[i] = T_[b](lift(H[i]));
     poly_[b].n = T_[b].R.col(2);
     centre_[b] = T_[b](lift(pc_[b].centre));
   }
 }
 
 PairInfo& Checker::info(int p, int q) {
-  std::uint64_t key = (static_cast<std::uint64_t>(p) << 32) | static_cast<std::uint32_t>(q);
-  auto [it, fresh] = pairs_.try_emplace(key);
-  if (fresh) classify(p, q, it->second);
-  return it->second;
+  const int nb = static_cast<int>(pc_.size());
+  int* slot;
+  if (nb <= kDensePieces) {
+    if (pair_slot_.empty()) pair_slot_.assign(static_cast<std::size_t>(nb) * nb, -1);
+    slot = &pair_slot_[static_cast<std::size_t>(p) * nb + q];
+  } else {
+    std::uint64_t key = (static_cast<std::uint64_t>(p) << 32) | static_cast<std::uint32_t>(q);
+    slot = &pair_map_.try_emplace(key, -1).first->second;
+  }
+  if (*slot >= 0) return pairs_[*slot];
+  *slot = static_cast<int>(pairs_.size());
+  pairs_.emplace_back();
+  classify(p, q, pairs_.back());
+  return pairs_.back();
 }
 
 // The hull's wedge at net point `at` as an arc of directions (in net coordinates, z = 0): the
@@ -581,9 +629,13 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
   const int mp = static_cast<int>(xp.size()), mq = static_cast<int>(xq.size());
   if (mp < 2 || mq < 2) return 0;  // a sliver narrower than the hull's tolerance is a segment
   const Vec3 np = poly_[p].n;
-  std::vector<Vec3> vel(mq);
-  std::vector<double> L(mq, 0.0);
-  std::vector<char> fixed(mq, 0);
+  // Scratch arrays of the checker (no allocation per call once they have grown).
+  std::vector<Vec3>& vel = pa_vel_;
+  std::vector<double>& L = pa_L_;
+  std::vector<char>& fixed = pa_fixed_;
+  vel.assign(mq, Vec3::Zero());
+  L.assign(mq, 0.0);
+  fixed.assign(mq, 0);
   for (int i = 0; i < mq; ++i) {
     const Vec3& x = xq[i];
     fixed[i] = near_fixed(Q, i, pi, S);
@@ -596,7 +648,8 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
         L[i] += std::abs(pc_[b].angle) * (w - w.dot(u) * u).norm();
       }
   }
-  std::vector<Vec3> dirs;
+  std::vector<Vec3>& dirs = pa_dirs_;
+  dirs.clear();
   for (int i = 0; i < mp; ++i) {
     Vec3 m = (xp[(i + 1) % mp] - xp[i]).cross(np);  // outward: hull counter-clockwise about n_p
     if (m.norm() > 0) dirs.push_back(m.normalized());
@@ -610,13 +663,15 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
     if (m.norm() > 1e-12) dirs.push_back(-m.normalized());
   }
   double best = 0;
-  std::vector<double> hz(mq), hm(mq), dz(mq), dm(mq);
+  std::vector<double>&hz = pa_hz_, &hm = pa_hm_, &dz = pa_dz_, &dm = pa_dm_;
+  hz.resize(mq), hm.resize(mq), dz.resize(mq), dm.resize(mq);
   for (int i = 0; i < mq; ++i) hz[i] = np.dot(xq[i] - xp[0]), dz[i] = np.dot(vel[i]);
   for (const Vec3& m : dirs) {
+    if (best >= 0.5 / S) break;  // no window exceeds 0.5 / S: the rest cannot change the result
     double c = -kInf;
     for (const auto& y : xp) c = std::max(c, m.dot(y));
     for (int i = 0; i < mq; ++i) hm[i] = m.dot(xq[i]) - c, dm[i] = m.dot(vel[i]);
-    for (int k = 0; k <= 16; ++k) {
+    for (int k = 0; k <= 16 && best < 0.5 / S; ++k) {
       const double sn = kTilt[k][1], cs = kTilt[k][0];
       double window = 0.5 / S;
       for (int i = 0; i < mq && window > best; ++i) {
@@ -811,8 +866,11 @@ FoldCheckResult Checker::run() {
     res.pairs = static_cast<int>(pairs_.size());
   };
 
-  std::vector<double> abs_lever(nb), abs_theta(nb);
+  std::vector<double> abs_lever(nb), abs_theta(nb), box_lo(3 * nb), box_hi(3 * nb);
   std::vector<std::pair<int, int>> cand;
+  lever_off_.assign(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) lever_off_[b + 1] = lever_off_[b] + pc_[b].depth;
+  lever_.assign(lever_off_[nb], 0.0);
   // Steps allowed: max_steps, and max_work / pieces when a work budget is given.
   const long long step_cap =
       opt_.max_work > 0 ? std::min<long long>(opt_.max_steps, std::max<long long>(1, opt_.max_work / nb)) : opt_.max_steps;
@@ -823,7 +881,9 @@ FoldCheckResult Checker::run() {
       if (pi.flat_apart < 0) pi.flat_apart = !flat_overlap(p, q);
       if (!pi.flat_apart) return 0.0;
     }
-    return std::min(1 - t, std::max(plane_advance(p, q, pi), plane_advance(q, p, pi)));
+    // min(1 - t, max(a, b)): b cannot change it once a reaches 1 - t.
+    const double a = plane_advance(p, q, pi);
+    return a >= 1 - t ? 1 - t : std::min(1 - t, std::max(a, plane_advance(q, p, pi)));
   };
   int last_p = -1, last_q = -1;
   for (res.steps = 0; res.steps < step_cap; ++res.steps) {
@@ -831,27 +891,27 @@ FoldCheckResult Checker::run() {
     double max_lever = 0, max_theta = 0;
     for (int b = 0; b < nb; ++b) {
       abs_lever[b] = abs_theta[b] = 0;
-      for (int a = b; pc_[a].parent >= 0; a = pc_[a].parent) abs_lever[b] += lever(b, a), abs_theta[b] += std::abs(pc_[a].angle);
+      double* lev = &lever_[lever_off_[b]];
+      for (int a = b; pc_[a].parent >= 0; a = pc_[a].parent) {
+        const double l = *lev++ = lever(b, a);
+        abs_lever[b] += l, abs_theta[b] += std::abs(pc_[a].angle);
+      }
       max_lever = std::max(max_lever, abs_lever[b]);
       max_theta = std::max(max_theta, abs_theta[b]);
     }
     dt = std::min({2 * dt, 1 - t, 0.5 / std::max(max_theta, 1e-300)});
     if (travel(dt, max_lever, max_theta) > max_travel) dt = max_travel / (max_lever + max_travel * max_theta);
-    // Candidate pairs: pieces whose boxes, inflated by how far they can travel in dt, meet.
-    std::vector<Box> boxes;
-    boxes.reserve(nb);
+    // Candidate pairs: pieces whose boxes, inflated by how far they can travel in dt, meet
+    // (closed boxes: touching counts).
     for (int b = 0; b < nb; ++b) {
       double r = travel(dt, abs_lever[b], abs_theta[b]) + tol_;
-      double lo[3] = {kInf, kInf, kInf}, hi[3] = {-kInf, -kInf, -kInf};
+      double* lo = &box_lo[3 * b];
+      double* hi = &box_hi[3 * b];
+      lo[0] = lo[1] = lo[2] = kInf, hi[0] = hi[1] = hi[2] = -kInf;
       for (auto& v : poly_[b].v)
         for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], v[d] - r), hi[d] = std::max(hi[d], v[d] + r);
-      boxes.emplace_back(lo, hi, b);
     }
-    cand.clear();
-    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box& a, const Box& b) {
-      cand.emplace_back(std::min(a.info(), b.info()), std::max(a.info(), b.info()));
-    });
-    std::sort(cand.begin(), cand.end());  // deterministic whatever order the boxes come in
+    sweep_.pairs(box_lo, box_hi, cand);  // sorted: deterministic
     double step = dt;
     int limit_p = -1, limit_q = -1;  // the pair that limits the step (reported at the step limit)
     for (auto [p, q] : cand) {
@@ -886,10 +946,12 @@ FoldCheckResult Checker::run() {
           h = std::max(d / S, hp);
         }
       } else {
-        double d = polygon_distance(poly_[p], poly_[q]) - tol_;
+        double d = polygon_distance(poly_[p], poly_[q], tol_) - tol_;
         double L = 0, Sp = 0, Sq = 0;
-        for (int b : pi.up_p) L += lever(p, b), Sp += std::abs(pc_[b].angle);
-        for (int b : pi.up_q) L += lever(q, b), Sq += std::abs(pc_[b].angle);
+        // up_p is the start of p's way to the root: its levers are this step's first ones.
+        const double *lp = &lever_[lever_off_[p]], *lq = &lever_[lever_off_[q]];
+        for (int b : pi.up_p) L += *lp++, Sp += std::abs(pc_[b].angle);
+        for (int b : pi.up_q) L += *lq++, Sq += std::abs(pc_[b].angle);
         double S = std::max(Sp, Sq);
         double hd = d > 0 ? d / (L + d * S) : 0;  // travel(h, L, S) = d
         double hp = hd < dt ? advance(p, q, pi) : 0;

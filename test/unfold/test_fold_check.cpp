@@ -5,6 +5,8 @@
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
+#include <CGAL/box_intersection_d.h>
+#include <CGAL/Box_intersection_d/Box_with_info_d.h>
 
 #include "dcshell/build_shells.h"
 #include "dcshell/convex_hull.h"
@@ -12,6 +14,7 @@
 #include "dcshell/net_overlap.h"
 #include "dcshell/read_mesh.h"
 #include "dcshell/unfold.h"
+#include "unfold/box_sweep.h"
 #include "unfold_test_util.h"
 
 using namespace dcshell;
@@ -295,4 +298,40 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_every_squirtle_dc_shell_net) {
   // 0.6 x 1.4e-8 (its distance to each axis is the same in every state). Counted as fixed, the
   // shell's nets verify; before, all 7 but that one did.
   expect_every_dc_shell_net_verified("Squirtle", 7);
+}
+
+// The folding check's broad phase (src/unfold/box_sweep.h) reports exactly the pairs of closed
+// boxes CGAL's box_self_intersection_d reports, sorted, also when boxes only touch (equal
+// coordinates on a grid), share low x, and move past each other between calls (the sweep keeps
+// its order from the previous call). A pair it skipped would never be examined by the check.
+BOOST_AUTO_TEST_CASE(fold_check_broad_phase_finds_every_meeting_pair_of_boxes) {
+  using Box3 = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+  unfold_detail::BoxSweep sweep;
+  std::uint64_t state = 12345;
+  auto next = [&] {  // small deterministic generator
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<double>(state >> 11) / 9007199254740992.0;
+  };
+  const int n = 120;
+  std::vector<double> centre(3 * n), half(3 * n), lo(3 * n), hi(3 * n);
+  for (int i = 0; i < 3 * n; ++i) centre[i] = std::floor(next() * 20), half[i] = std::floor(next() * 3);
+  int touching = 0;
+  for (int round = 0; round < 40; ++round) {
+    for (int i = 0; i < 3 * n; ++i) {
+      if (round > 0) centre[i] += std::floor(next() * 5) - 2;  // boxes overtake each other
+      lo[i] = centre[i] - half[i], hi[i] = centre[i] + half[i];  // integers: exact touches
+    }
+    std::vector<std::pair<int, int>> got, want;
+    sweep.pairs(lo, hi, got);
+    std::vector<Box3> boxes;
+    for (int b = 0; b < n; ++b) boxes.emplace_back(&lo[3 * b], &hi[3 * b], b);
+    CGAL::box_self_intersection_d(boxes.begin(), boxes.end(), [&](const Box3& a, const Box3& b) {
+      want.emplace_back(std::min(a.info(), b.info()), std::max(a.info(), b.info()));
+    });
+    std::sort(want.begin(), want.end());
+    BOOST_TEST_REQUIRE((got == want), "round " << round << ": " << got.size() << " pairs, CGAL " << want.size());
+    for (auto [p, q] : got)
+      for (int d = 0; d < 3; ++d) touching += hi[3 * p + d] == lo[3 * q + d] || hi[3 * q + d] == lo[3 * p + d];
+  }
+  BOOST_TEST(touching > 0);  // the closed case was exercised
 }

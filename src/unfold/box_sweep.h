@@ -1,0 +1,58 @@
+// Broad phase of the folding check (fold_check.cpp): every pair of axis-aligned 3D boxes that
+// meet as closed boxes (touching counts), by a sweep along x. The set is the one CGAL's
+// box_self_intersection_d reports with its default (closed) topology; the pairs come sorted
+// (p < q, lexicographic), so the result does not depend on the sweep. The sweep order (boxes by
+// low x, ties by index) is kept from one call to the next: the folding check's boxes move
+// little per step, so an insertion sort restores it in about linear time.
+#pragma once
+#include <algorithm>
+#include <utility>
+#include <vector>
+
+namespace dcshell::unfold_detail {
+
+class BoxSweep {
+ public:
+  /// lo, hi: 3 doubles per box (box b at 3b .. 3b + 2); every box has lo <= hi.
+  void pairs(const std::vector<double>& lo, const std::vector<double>& hi, std::vector<std::pair<int, int>>& out) {
+    const int n = static_cast<int>(lo.size() / 3);
+    if (static_cast<int>(order_.size()) != n) {
+      order_.resize(n);
+      for (int b = 0; b < n; ++b) order_[b] = b;
+    }
+    std::vector<int>& s = order_;
+    auto before = [&](int a, int b) { return lo[3 * a] < lo[3 * b] || (lo[3 * a] == lo[3 * b] && a < b); };
+    for (int i = 1; i < n; ++i) {
+      const int x = s[i];
+      int j = i;
+      for (; j > 0 && before(x, s[j - 1]); --j) s[j] = s[j - 1];
+      s[j] = x;
+    }
+    found_.clear();
+    for (int i = 0; i < n; ++i) {
+      const int a = s[i];
+      const double ahx = hi[3 * a], aly = lo[3 * a + 1], ahy = hi[3 * a + 1], alz = lo[3 * a + 2], ahz = hi[3 * a + 2];
+      for (int j = i + 1; j < n; ++j) {
+        const int b = s[j];
+        if (lo[3 * b] > ahx) break;  // sorted by low x: no later box reaches a's x range
+        if (hi[3 * b] >= lo[3 * a] && hi[3 * b + 1] >= aly && lo[3 * b + 1] <= ahy && hi[3 * b + 2] >= alz &&
+            lo[3 * b + 2] <= ahz)
+          found_.emplace_back(std::min(a, b), std::max(a, b));
+      }
+    }
+    // Sorted: a counting sort by the first box, then each one's few partners.
+    bucket_.assign(n + 1, 0);
+    for (const auto& pq : found_) ++bucket_[pq.first + 1];
+    for (int i = 0; i < n; ++i) bucket_[i + 1] += bucket_[i];
+    fill_.assign(bucket_.begin(), bucket_.end() - 1);
+    out.resize(found_.size());
+    for (const auto& pq : found_) out[fill_[pq.first]++] = pq;
+    for (int i = 0; i < n; ++i) std::sort(out.begin() + bucket_[i], out.begin() + bucket_[i + 1]);
+  }
+
+ private:
+  std::vector<int> order_, bucket_, fill_;
+  std::vector<std::pair<int, int>> found_;
+};
+
+}  // namespace dcshell::unfold_detail
