@@ -8,6 +8,7 @@
 #include <array>
 #include <filesystem>
 #include <map>
+#include <set>
 #include <numeric>
 
 #include "dcshell/convex_hull.h"
@@ -97,14 +98,6 @@ std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector
       add_part(parts, open_parts, base_name(file), file, soup, all);
     }
   }
-  // Segmented meshes have open parts: normal input, one line per file says so.
-  for (const auto& [file, names] : open_parts) {
-    std::string list;
-    for (std::size_t k = 0; k < names.size() && k < 3; ++k) list += (k ? ", " : "") + names[k];
-    if (names.size() > 3) list += ", ...";
-    warnings.push_back(file + ": " + std::to_string(names.size()) + " part(s) are open or non-manifold surfaces (" +
-                       list + "); their convex hulls are used");
-  }
   // Scale of the whole shape (its solid parts: a flat sheet is no measure of size), for the
   // "tiny" test.
   std::vector<bool> flat(parts.size());
@@ -136,6 +129,21 @@ std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector
       continue;
     }
     kept.push_back(std::move(p));
+  }
+  // Segmented meshes have open parts: normal input, one line per file says so.
+  // (Parts skipped as flat or tiny have had their warning.)
+  std::set<std::string> kept_names;
+  for (const auto& p : kept) kept_names.insert(p.source + "\n" + p.name);
+  for (auto& [file, all_names] : open_parts) {
+    std::vector<std::string> names;
+    for (const auto& n : all_names)
+      if (kept_names.count(file + "\n" + n)) names.push_back(n);
+    if (names.empty()) continue;
+    std::string list;
+    for (std::size_t k = 0; k < names.size() && k < 3; ++k) list += (k ? ", " : "") + names[k];
+    if (names.size() > 3) list += ", ...";
+    warnings.push_back(file + ": " + std::to_string(names.size()) + " part(s) are open or non-manifold surfaces (" +
+                       list + "); their convex hulls are used");
   }
   if (kept.empty()) {
     std::string why;

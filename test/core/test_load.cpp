@@ -83,6 +83,18 @@ BOOST_AUTO_TEST_CASE(one_file_connected_components_or_groups) {
   BOOST_TEST(w[0].find("flat") != std::string::npos);
 }
 
+BOOST_AUTO_TEST_CASE(open_part_is_kept_with_one_warning_per_file) {
+  TempDir t;
+  // A box without its last face: open, but its hull is a solid box.
+  std::string box = box_obj(0, 0, 0, 1, 1, 1);
+  box.erase(box.rfind("f "));
+  std::vector<std::string> w;
+  auto parts = load_parts({t.write("open.obj", box), t.write("closed.obj", box_obj(2, 0, 0, 3, 1, 1))}, w);
+  BOOST_TEST(parts.size() == 2u);
+  BOOST_REQUIRE(w.size() == 1u);
+  BOOST_TEST(w[0].find("open.obj: 1 part(s) are open or non-manifold surfaces") != std::string::npos, w[0]);
+}
+
 BOOST_AUTO_TEST_CASE(tiny_part_is_warned_and_skipped) {
   TempDir t;
   t.write("d/big.obj", box_obj(0, 0, 0, 1000, 1000, 1000));
