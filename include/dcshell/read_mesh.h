@@ -27,6 +27,9 @@ std::vector<std::pair<std::string, Mesh>> read_mesh_objects(const std::string& p
 /// and every file contributes its objects (read_mesh_objects). Names as in read_mesh_objects.
 std::vector<std::pair<std::string, Mesh>> read_mesh_set(const std::vector<std::string>& inputs);
 
+/// True for the file names dcshell reads as meshes (.obj .off .ply .stl, case-insensitive).
+bool is_mesh_file_name(const std::string& path);
+
 /// Expands command-line inputs: a directory means all mesh files in it (.obj .off .ply .stl,
 /// case-insensitive; hidden files excluded), in name order, except a `shells.obj` beside `shell_*` files (the combined
 /// copy a `dcshell shell` run writes for viewers); a file is kept as is. Throws InputError for a missing path

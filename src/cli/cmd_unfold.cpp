@@ -2,6 +2,7 @@
 // (nets.svg|pdf), a JSON report with the folding check, and optionally the folding motion.
 #include <boost/program_options.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -110,7 +111,11 @@ std::vector<std::size_t> skip_flat_and_tiny(std::vector<std::string>& files, std
     const double volume = CGAL::to_double(six_signed_volume(meshes[k])) / 6;
     std::string problem;
     if (volume == 0) problem = "is flat (encloses no volume)";
-    else if (std::fabs(volume) < 1e-12 * diag * diag * diag) problem = "is tiny (volume " + std::to_string(volume) + ")";
+    else if (std::fabs(volume) < 1e-12 * diag * diag * diag) {
+      char buf[96];
+      std::snprintf(buf, sizeof buf, "is tiny (volume %.3g, below 1e-12 of the set's bounding cube)", volume);
+      problem = buf;
+    }
     if (!problem.empty()) {
       std::cerr << "dcshell unfold: warning: " << files[k] << " " << problem << "; skipped\n";
       why.push_back(files[k] + " " + problem);

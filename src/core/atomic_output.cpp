@@ -4,7 +4,6 @@
 
 #include <csignal>
 
-#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -13,6 +12,7 @@
 #include <stdexcept>
 
 #include "dcshell/error.h"
+#include "dcshell/read_mesh.h"
 
 namespace fs = std::filesystem;
 
@@ -92,9 +92,7 @@ void rename_or_throw(const fs::path& from, const fs::path& to, const std::string
 
 void refuse_input_as_output(const std::string& path, const std::vector<std::string>& inputs) {
   // A mesh file written into an input directory would be read as input by the next run.
-  std::string ext = fs::path(path).extension().string();
-  for (auto& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
-  const bool mesh = ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl";
+  const bool mesh = is_mesh_file_name(path);
   std::error_code ec;
   for (const auto& in : inputs) {
     if (same_or_inside(in, path)) throw InputError(path + ": output would overwrite input " + in);

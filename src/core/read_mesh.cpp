@@ -435,6 +435,11 @@ std::vector<std::pair<std::string, Mesh>> read_mesh_set(const std::vector<std::s
   return out;
 }
 
+bool is_mesh_file_name(const std::string& path) {
+  const std::string ext = lower_extension(path);
+  return ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl";
+}
+
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
   std::vector<std::string> out;
   for (const auto& in : inputs) {
@@ -445,8 +450,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
       for (const auto& e : fs::directory_iterator(in, ec)) {
         // Hidden files (".x.obj", macOS "._x.obj" resource forks) are not meshes of the set.
         if (!e.is_regular_file() || e.path().filename().string().rfind('.', 0) == 0) continue;
-        std::string ext = lower_extension(e.path().string());
-        if (ext == ".obj" || ext == ".off" || ext == ".ply" || ext == ".stl") files.push_back(e.path().string());
+        if (is_mesh_file_name(e.path().string())) files.push_back(e.path().string());
       }
       if (ec) fail(in, 0, "cannot list directory (" + ec.message() + ")");
       if (files.empty()) fail(in, 0, "directory holds no mesh files (.obj .off .ply .stl)");
