@@ -15,6 +15,7 @@
 #include "dcshell/error.h"
 #include "dcshell/fold_check.h"
 #include "dcshell/json.h"
+#include "dcshell/load_parts.h"
 #include "dcshell/mesh_volume.h"
 #include "dcshell/net_sheets.h"
 #include "dcshell/parallel_for.h"
@@ -95,15 +96,14 @@ void write_motion(const std::vector<std::string>& names, const std::vector<Shell
   }
 }
 
-// Drops the shells that enclose no volume (flat) or a negligible one (below 1e-12 of the cube
+// Drops the shells that enclose no volume (flat) or a negligible one (below `load_parts`' tiny fraction, 1e-12, of the cube
 // of the whole set's bounding-box diagonal), warning for each; refuses a set with none left.
 // Returns the input index of every shell kept.
 std::vector<std::size_t> skip_flat_and_tiny(std::vector<std::string>& files, std::vector<Mesh>& meshes) {
   CGAL::Bbox_3 box;
   for (const auto& m : meshes)
     for (auto v : m.vertices()) box += m.point(v).bbox();
-  const double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                                CGAL::square(box.zmax() - box.zmin()));
+  const double scale = diagonal_cube_volume(box), fraction = LoadPartsOptions{}.tiny_volume_fraction;
   std::vector<std::size_t> index;
   std::vector<std::string> kept_files, why;
   std::vector<Mesh> kept;
@@ -111,9 +111,9 @@ std::vector<std::size_t> skip_flat_and_tiny(std::vector<std::string>& files, std
     const double volume = CGAL::to_double(six_signed_volume(meshes[k])) / 6;
     std::string problem;
     if (volume == 0) problem = "is flat (encloses no volume)";
-    else if (std::fabs(volume) < 1e-12 * diag * diag * diag) {
-      char buf[96];
-      std::snprintf(buf, sizeof buf, "is tiny (volume %.3g, below 1e-12 of the set's bounding cube)", volume);
+    else if (std::fabs(volume) < fraction * scale) {
+      char buf[112];
+      std::snprintf(buf, sizeof buf, "is tiny (volume %.3g, below %.2g of the set's bounding cube)", volume, fraction);
       problem = buf;
     }
     if (!problem.empty()) {

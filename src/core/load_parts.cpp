@@ -14,6 +14,7 @@
 #include "dcshell/convex_hull.h"
 #include "dcshell/error.h"
 #include "dcshell/exact_polytope.h"
+#include "dcshell/mesh_volume.h"
 #include "dcshell/read_mesh.h"
 
 namespace dcshell {
@@ -107,8 +108,7 @@ std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector
     if (!flat[i])
       for (const auto& q : parts[i].points) box += q.bbox();
   }
-  double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                          CGAL::square(box.zmax() - box.zmin()));
+  const double scale = diagonal_cube_volume(box);
   std::vector<Part> kept;
   std::vector<std::string> skipped;
   for (std::size_t i = 0; i < parts.size(); ++i) {
@@ -119,7 +119,7 @@ std::vector<Part> load_parts(const std::vector<std::string>& inputs, std::vector
       continue;
     }
     double v = approximate_volume(exact_hull(p.points));
-    const double fraction = v / (diag * diag * diag);
+    const double fraction = v / scale;
     if (fraction < options.tiny_volume_fraction) {
       char buf[160];
       std::snprintf(buf, sizeof buf, " is tiny (hull volume %.3g = %.2g of the shape's bounding cube, below %.2g); skipped",

@@ -1,5 +1,7 @@
 #include "dcshell/mesh_volume.h"
 
+#include <cmath>
+
 namespace dcshell {
 
 CGAL::Mpzf six_signed_volume(const Mesh& mesh) {
@@ -16,6 +18,12 @@ CGAL::Mpzf six_signed_volume(const Mesh& mesh) {
     }
   }
   return six;
+}
+
+double diagonal_cube_volume(const CGAL::Bbox_3& box) {
+  const double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                CGAL::square(box.zmax() - box.zmin()));
+  return diag * diag * diag;
 }
 
 }  // namespace dcshell

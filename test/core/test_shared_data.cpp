@@ -17,9 +17,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-auto needs_shared = boost::unit_test::precondition([](auto) {
-  return boost::test_tools::assertion_result(dcshell::test::shared_data_available());
-});
+auto needs_shared = boost::unit_test::precondition(dcshell::test::shared_data_present);
 
 std::string shared(const std::string& rel) { return std::string(DCSHELL_SHARED_DATA) + "/" + rel; }
 

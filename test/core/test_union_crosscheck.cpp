@@ -68,9 +68,7 @@ BOOST_AUTO_TEST_CASE(boxes_and_a_tilted_prism_against_corefinement) {
   BOOST_TEST(our_union_volume(sets) == boolean_union_volume(sets), boost::test_tools::tolerance(1e-12));
 }
 
-BOOST_AUTO_TEST_CASE(cow_hulls_against_corefinement, *boost::unit_test::precondition([](auto) {
-  return boost::test_tools::assertion_result(dcshell::test::shared_data_available());
-})) {
+BOOST_AUTO_TEST_CASE(cow_hulls_against_corefinement, *boost::unit_test::precondition(dcshell::test::shared_data_present)) {
   std::vector<std::string> w;
   auto parts = load_parts({std::string(DCSHELL_SHARED_DATA) + "/composite/Cow"}, w);
   std::vector<std::vector<Point3>> sets;

@@ -2,6 +2,8 @@
 #pragma once
 #include <unistd.h>
 
+#include <boost/test/unit_test.hpp>
+
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -47,5 +49,11 @@ struct TempDir {
 };
 
 inline bool shared_data_available() { return std::filesystem::is_directory(DCSHELL_SHARED_DATA); }
+
+// Precondition of the tests on ../shared/data. A plain function, not a lambda: copying an empty
+// lambda into the decorator's boost::function trips GCC 12's -Wuninitialized.
+inline boost::test_tools::assertion_result shared_data_present(boost::unit_test::test_unit_id) {
+  return shared_data_available();
+}
 
 }  // namespace dcshell::test
