@@ -11,4 +11,7 @@ namespace dcshell {
 /// plane halfway between their centroids. Unit normal oriented from a toward b (centroids).
 CutPlane lsf_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b);
 
+/// The same with a ∩ b given, faces tagged 0 (from a) and 1 (from b): `tagged_intersection`.
+CutPlane lsf_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b, const ConvexPolytope& a_cap_b);
+
 }  // namespace dcshell

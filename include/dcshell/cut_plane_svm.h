@@ -2,6 +2,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <cstdint>
+#include <optional>
 #include <random>
 #include <vector>
 
@@ -25,7 +26,8 @@ CutPlane linear_svm(const std::vector<Eigen::Vector3d>& negative, const std::vec
 /// both classes and only add noise; counts proportional to volume, at least 16 each). When
 /// either difference has less than 1% of its hull's volume (nested hulls), the points are
 /// drawn in the whole of a and b. Normal oriented from a toward b.
+/// `overlap_volume`: vol(a ∩ b) when the caller knows it (computed otherwise).
 CutPlane svm_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b, double c, std::size_t samples,
-                       std::uint64_t seed);
+                       std::uint64_t seed, std::optional<double> overlap_volume = std::nullopt);
 
 }  // namespace dcshell

@@ -39,7 +39,16 @@ struct CutProblem {
   std::vector<ConvexPolytope> interference_a;
   /// Regions C_j ∩ C_k that b should not lose: adds lambda * vol(Y ∩ H-) for each.
   std::vector<ConvexPolytope> interference_b;
+  /// a ∩ b as `tagged_intersection(a, b)` gives it, when the caller has it already. Every
+  /// method needs it (the LSF curve, the SVM's class volumes, the lost volume) and it is the
+  /// costly part of a fit when the hulls are large: fit_cut_plane and evaluate_cut_plane
+  /// compute it once when it is unset.
+  std::optional<ConvexPolytope> current_overlap;
 };
+
+/// a ∩ b with the faces from a tagged 0 and those from b tagged 1 (so the curve ∂a ∩ ∂b is
+/// the set of edges between a 0-face and a 1-face).
+ConvexPolytope tagged_intersection(const ConvexPolytope& a, const ConvexPolytope& b);
 
 struct CutOptions {
   CutMethod method = CutMethod::full;

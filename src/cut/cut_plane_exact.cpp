@@ -3,17 +3,21 @@
 
 #include "cut/cut_objective.h"
 #include "dcshell/cut_plane_svm.h"
+#include "dcshell/polytope_clip.h"
 
 namespace dcshell {
 
 CutPlane exact_cut_plane(const CutProblem& problem, const CutOptions& options) {
   CutObjective objective(problem, options.lambda);
+  const double overlap_volume =
+      problem.current_overlap ? volume(*problem.current_overlap) : volume(intersect(problem.a, problem.b));
   // The SVM's penalty is fragile (the paper says so): the normal it gives for overlapping
   // hulls swings with it. Try a decade either side and let the exact objective choose.
   CutObjective::Best best;
   bool first = true;
   for (double scale : {1.0, 0.1, 10.0}) {
-    const CutPlane svm = svm_cut_plane(problem.a, problem.b, scale * options.svm_c, options.svm_samples, options.seed);
+    const CutPlane svm = svm_cut_plane(problem.a, problem.b, scale * options.svm_c, options.svm_samples, options.seed,
+                                       overlap_volume);
     const CutObjective::Best b = objective.best_offset(svm.normal);
     if (first || b.value < best.value) best = b, first = false;
   }

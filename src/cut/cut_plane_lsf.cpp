@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <unordered_map>
 
+#include "dcshell/fit_cut_plane.h"
 #include "dcshell/kernel.h"
 #include "dcshell/polytope_clip.h"
 
@@ -15,15 +16,13 @@ namespace {
 
 Point3 to_point(const Eigen::Vector3d& v) { return {v.x(), v.y(), v.z()}; }
 
-ConvexPolytope retagged(const ConvexPolytope& p, int tag) {
-  ConvexPolytope r = p;
-  r.face_tags.assign(r.faces.size(), tag);
-  return r;
-}
-
 }  // namespace
 
 CutPlane lsf_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b) {
+  return lsf_cut_plane(a, b, tagged_intersection(a, b));
+}
+
+CutPlane lsf_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b, const ConvexPolytope& ab) {
   const Eigen::Vector3d ca = centroid(a), cb = centroid(b);
   Eigen::Vector3d axis = cb - ca;
   if (!(axis.norm() > 0)) axis = Eigen::Vector3d::UnitX();
@@ -31,7 +30,6 @@ CutPlane lsf_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b) {
 
   // Tags 0 (faces of a) and 1 (faces of b): an edge of a ∩ b between a 0-face and a 1-face
   // lies on both boundaries, i.e. on the intersection curve.
-  const ConvexPolytope ab = intersect(retagged(a, 0), retagged(b, 1));
   if (ab.empty()) return {axis, axis.dot(0.5 * (ca + cb))};
   std::unordered_map<std::uint64_t, int> edge_face;
   auto key = [](int u, int v) { return (std::uint64_t(std::uint32_t(u)) << 32) | std::uint32_t(v); };

@@ -160,7 +160,7 @@ CutPlane linear_svm(const std::vector<Eigen::Vector3d>& negative, const std::vec
 }
 
 CutPlane svm_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b, double c, std::size_t samples,
-                       std::uint64_t seed) {
+                       std::uint64_t seed, std::optional<double> overlap_volume) {
   // Points of the overlap a ∩ b are samples of both classes: no plane can separate them, they
   // only add noise (on the two-bar study the normal spread by up to 20 degrees between seeds,
   // and more samples did not help). The classes are therefore a \ b and b \ a, drawn by
@@ -174,7 +174,7 @@ CutPlane svm_cut_plane(const ConvexPolytope& a, const ConvexPolytope& b, double 
       if (h.normal.dot(x) > h.offset) return false;
     return true;
   };
-  const double va = volume(a), vb = volume(b), vab = volume(intersect(a, b));
+  const double va = volume(a), vb = volume(b), vab = overlap_volume ? *overlap_volume : volume(intersect(a, b));
   constexpr std::size_t kMin = 16;
   const bool exclusive = va - vab > 0.01 * va && vb - vab > 0.01 * vb;
   const double wa = exclusive ? va - vab : va, wb = exclusive ? vb - vab : vb;

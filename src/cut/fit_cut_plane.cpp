@@ -43,24 +43,44 @@ CutResult evaluate(CutObjective& obj, const CutProblem& pb, CutPlane plane) {
   CutResult r;
   r.plane = plane;
   r.objective = obj.value(plane);
-  r.lost_volume = std::max(0.0, obj.separated_volume(plane) - volume(intersect(pb.a, pb.b)));
+  r.lost_volume = std::max(0.0, obj.separated_volume(plane) - volume(*pb.current_overlap));
   return r;
+}
+
+// The problem with its current overlap computed: a copy only when the caller left it unset.
+const CutProblem& completed(const CutProblem& problem, std::optional<CutProblem>& storage) {
+  if (problem.current_overlap) return problem;
+  storage.emplace(problem);
+  storage->current_overlap = tagged_intersection(problem.a, problem.b);
+  return *storage;
 }
 
 }  // namespace
 
-CutResult evaluate_cut_plane(const CutProblem& problem, const CutPlane& plane, double lambda) {
+ConvexPolytope tagged_intersection(const ConvexPolytope& a, const ConvexPolytope& b) {
+  ConvexPolytope ta = a, tb = b;
+  ta.face_tags.assign(ta.faces.size(), 0);
+  tb.face_tags.assign(tb.faces.size(), 1);
+  return intersect(ta, tb);
+}
+
+CutResult evaluate_cut_plane(const CutProblem& problem_in, const CutPlane& plane, double lambda) {
+  std::optional<CutProblem> storage;
+  const CutProblem& problem = completed(problem_in, storage);
   CutObjective obj(problem, lambda);
   return evaluate(obj, problem, plane);
 }
 
-CutResult fit_cut_plane(const CutProblem& problem, const CutOptions& options) {
+CutResult fit_cut_plane(const CutProblem& problem_in, const CutOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
+  std::optional<CutProblem> storage;
+  const CutProblem& problem = completed(problem_in, storage);
   CutPlane plane;
   switch (options.method) {
-    case CutMethod::lsf: plane = lsf_cut_plane(problem.a, problem.b); break;
+    case CutMethod::lsf: plane = lsf_cut_plane(problem.a, problem.b, *problem.current_overlap); break;
     case CutMethod::svm:
-      plane = svm_cut_plane(problem.a, problem.b, options.svm_c, options.svm_samples, options.seed);
+      plane = svm_cut_plane(problem.a, problem.b, options.svm_c, options.svm_samples, options.seed,
+                            volume(*problem.current_overlap));
       break;
     case CutMethod::exact: plane = exact_cut_plane(problem, options); break;
     case CutMethod::full: plane = full_cut_plane(problem, options); break;

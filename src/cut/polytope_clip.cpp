@@ -121,10 +121,16 @@ ConvexPolytope clip(const ConvexPolytope& p, const CutPlane& plane, int cap_tag)
 
   ConvexPolytope out;
   std::vector<int> remap(nv, -1);
+  // Per new vertex: does it lie on the plane (a crossing or an original vertex within tol)?
+  // Only an edge between two such vertices can bound the cap: an edge with an end strictly
+  // inside is kept by both faces around it (as it was, or up to the same crossing point).
+  std::vector<char> on;
+  on.reserve(nv);
   auto keep_vertex = [&](int v) {
     if (remap[v] < 0) {
       remap[v] = int(out.vertices.size());
       out.vertices.push_back(p.vertices[v]);
+      on.push_back(side[v] == 0);
     }
     return remap[v];
   };
@@ -135,6 +141,7 @@ ConvexPolytope clip(const ConvexPolytope& p, const CutPlane& plane, int cap_tag)
     if (inserted) {
       const double t = s[u] / (s[u] - s[w]);
       out.vertices.push_back(p.vertices[u] + t * (p.vertices[w] - p.vertices[u]));
+      on.push_back(1);
     }
     return it->second;
   };
@@ -157,7 +164,10 @@ ConvexPolytope clip(const ConvexPolytope& p, const CutPlane& plane, int cap_tag)
     nl.erase(std::unique(nl.begin(), nl.end()), nl.end());
     while (nl.size() > 1 && nl.front() == nl.back()) nl.pop_back();
     if (nl.size() < 3) continue;
-    for (std::size_t i = 0; i < nl.size(); ++i) directed.insert(edge_key(nl[i], nl[(i + 1) % nl.size()]));
+    for (std::size_t i = 0; i < nl.size(); ++i) {
+      const int a = nl[i], b = nl[(i + 1) % nl.size()];
+      if (on[a] && on[b]) directed.insert(edge_key(a, b));
+    }
     out.faces.push_back(std::move(nl));
     out.face_tags.push_back(f < p.face_tags.size() ? p.face_tags[f] : 0);
   }
@@ -167,7 +177,7 @@ ConvexPolytope clip(const ConvexPolytope& p, const CutPlane& plane, int cap_tag)
   for (const auto& f : out.faces)
     for (std::size_t i = 0; i < f.size(); ++i) {
       const int u = f[i], w = f[(i + 1) % f.size()];
-      if (!directed.count(edge_key(w, u))) chain_ok &= next.emplace(w, u).second;
+      if (on[u] && on[w] && !directed.count(edge_key(w, u))) chain_ok &= next.emplace(w, u).second;
     }
   std::vector<int> cap;
   if (chain_ok && next.size() >= 3) {

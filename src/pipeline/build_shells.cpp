@@ -189,6 +189,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
         ConvexPolytope a = trimmed_except(pairs[p].i, p), b = trimmed_except(pairs[p].j, p);
         if (a.empty() || b.empty()) continue;
         CutProblem prob = make_problem(p, std::move(a), std::move(b));
+        prob.current_overlap = tagged_intersection(prob.a, prob.b);  // once for both calls
         CutResult cur = evaluate_cut_plane(prob, pairs[p].plane, opt.cut.lambda);
         CutOptions o = pair_options(p);
         if (!opt.global_sweeps) o.warm_start = pairs[p].plane;
