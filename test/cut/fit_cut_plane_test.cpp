@@ -202,6 +202,28 @@ BOOST_AUTO_TEST_CASE(deterministic) {
   BOOST_CHECK(!same_bits(fit_cut_plane(pb, with(CutMethod::svm)).plane, fit_cut_plane(pb, other).plane));
 }
 
+// The shared a ∩ b is only a cache: handing it in, or leaving it to fit/evaluate, gives the
+// same bits, and it is the tagged intersection (LSF finds the curve through its tags).
+BOOST_AUTO_TEST_CASE(given_current_overlap_changes_nothing) {
+  for (std::uint64_t seed : {4u, 5u}) {
+    const CutProblem pb = random_pair(seed);
+    CutProblem given = pb;
+    given.current_overlap = tagged_intersection(pb.a, pb.b);
+    const ConvexPolytope& ab = *given.current_overlap;
+    BOOST_TEST_REQUIRE(!ab.empty());
+    BOOST_TEST(std::count(ab.face_tags.begin(), ab.face_tags.end(), 0) > 0);
+    BOOST_TEST(std::count(ab.face_tags.begin(), ab.face_tags.end(), 1) > 0);
+    BOOST_TEST(std::count_if(ab.face_tags.begin(), ab.face_tags.end(), [](int t) { return t != 0 && t != 1; }) == 0);
+    BOOST_CHECK(same_bits(lsf_cut_plane(pb.a, pb.b), lsf_cut_plane(pb.a, pb.b, ab)));
+    for (CutMethod m : {CutMethod::lsf, CutMethod::svm, CutMethod::exact, CutMethod::full}) {
+      const CutResult x = fit_cut_plane(pb, with(m)), y = fit_cut_plane(given, with(m));
+      BOOST_CHECK(same_bits(x.plane, y.plane));
+      BOOST_TEST(x.lost_volume == y.lost_volume);
+      BOOST_TEST(evaluate_cut_plane(pb, x.plane).objective == evaluate_cut_plane(given, x.plane).objective);
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(degenerate_problems_do_not_fail) {
   // Nested: b inside a.
   const CutProblem nested = make_problem(unit_cube(), box(Eigen::Vector3d::Constant(0.25), Eigen::Vector3d::Constant(0.5)));
