@@ -1,6 +1,9 @@
 #!/usr/bin/env python3
 """Writes the small composite examples in data/ (run from the repository root).
 
+`--large-spheres DIR` instead writes, outside the repository, the scaling case of doc/shell.md:
+two overlapping UV spheres of 24,864 and 1,512 faces (one part per file).
+
 Every example is a folder with one OBJ per part, except `snowman.obj`, whose connected
 components are the parts. Coordinates are exact decimals so the files are reproducible.
 """
@@ -67,6 +70,11 @@ def write(path, meshes, names=None):
             off += len(v)
 
 
+def large_spheres(out_dir):
+    write(os.path.join(out_dir, "big.obj"), [sphere((0, 0, 0), 1.0, 112, 112)])
+    write(os.path.join(out_dir, "small.obj"), [sphere((1.1, 0.2, 0.1), 0.6, 28, 28)])
+
+
 def main():
     # The paper's controlled study: two bars meeting at an elbow, at several angles.
     bar = box((-0.25, -2.0, -0.25), (0.25, 0.25, 0.25))
@@ -95,4 +103,10 @@ def main():
 
 
 if __name__ == "__main__":
-    main()
+    import sys
+    if len(sys.argv) == 3 and sys.argv[1] == "--large-spheres":
+        large_spheres(sys.argv[2])
+    elif len(sys.argv) == 1:
+        main()
+    else:
+        sys.exit("usage: make_examples.py [--large-spheres DIR]")
