@@ -29,7 +29,9 @@ UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, const std:
                          double max_relative_error = 1e-12);
 
 /// The same sum in exact rationals only (no interval filter): for callers that must decide the
-/// sign of a difference the enclosure cannot.
-ExactRational exact_union_volume(const std::vector<ExactPolytope>& polytopes);
+/// sign of a difference the enclosure cannot. `overlaps`, when given, is
+/// `find_overlaps(polytopes)`, reused as above.
+ExactRational exact_union_volume(const std::vector<ExactPolytope>& polytopes,
+                                 const std::vector<Overlap>* overlaps = nullptr);
 
 }  // namespace dcshell

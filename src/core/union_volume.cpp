@@ -96,15 +96,38 @@ std::vector<std::vector<std::size_t>> later_neighbours(const std::vector<ExactPo
   return later;
 }
 
+// The walk's start from the pairs with a common interior, whose intersections `overlaps`
+// already holds: `later` and `region` in parallel, sorted by the second index.
+struct KnownPairs {
+  std::vector<std::vector<std::size_t>> later;
+  std::vector<std::vector<const ExactPolytope*>> region;
+};
+
+KnownPairs known_pairs(std::size_t n, const std::vector<Overlap>& overlaps) {
+  std::vector<std::vector<std::pair<std::size_t, const ExactPolytope*>>> by_first(n);
+  for (const auto& o : overlaps) by_first[o.i].push_back({o.j, &o.region});
+  KnownPairs k{std::vector<std::vector<std::size_t>>(n), std::vector<std::vector<const ExactPolytope*>>(n)};
+  for (std::size_t i = 0; i < n; ++i) {
+    std::sort(by_first[i].begin(), by_first[i].end());
+    for (const auto& [j, r] : by_first[i]) k.later[i].push_back(j), k.region[i].push_back(r);
+  }
+  return k;
+}
+
 }  // namespace
 
 UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error) {
   return sum_over_nerve(polys, later_neighbours(polys), nullptr, max_relative_error, nullptr);
 }
 
-ExactRational exact_union_volume(const std::vector<ExactPolytope>& polys) {
+ExactRational exact_union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>* overlaps) {
   ExactRational v(0);
-  sum_over_nerve(polys, later_neighbours(polys), nullptr, 0.0, &v);
+  if (overlaps) {
+    const KnownPairs k = known_pairs(polys.size(), *overlaps);
+    sum_over_nerve(polys, k.later, &k.region, 0.0, &v);
+  } else {
+    sum_over_nerve(polys, later_neighbours(polys), nullptr, 0.0, &v);
+  }
   return v;
 }
 
@@ -112,15 +135,8 @@ UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vec
                          double max_relative_error) {
   // Only pairs with a common interior can start a non-empty term, and their intersections are
   // already known: the walk starts from them.
-  std::vector<std::vector<std::pair<std::size_t, const ExactPolytope*>>> by_first(polys.size());
-  for (const auto& o : overlaps) by_first[o.i].push_back({o.j, &o.region});
-  std::vector<std::vector<std::size_t>> later(polys.size());
-  std::vector<std::vector<const ExactPolytope*>> region(polys.size());
-  for (std::size_t i = 0; i < polys.size(); ++i) {
-    std::sort(by_first[i].begin(), by_first[i].end());
-    for (const auto& [j, r] : by_first[i]) later[i].push_back(j), region[i].push_back(r);
-  }
-  return sum_over_nerve(polys, later, &region, max_relative_error, nullptr);
+  const KnownPairs k = known_pairs(polys.size(), overlaps);
+  return sum_over_nerve(polys, k.later, &k.region, max_relative_error, nullptr);
 }
 
 }  // namespace dcshell

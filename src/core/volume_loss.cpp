@@ -36,7 +36,7 @@ VolumeLoss volume_loss(const std::vector<ExactPolytope>& hulls, const std::vecto
     return out;  // no union (no hulls): no loss to speak of
   }
   // The sign or the digits are undecided: everything exactly.
-  const ExactRational u_exact = exact_union_volume(hulls);
+  const ExactRational u_exact = exact_union_volume(hulls, overlaps);
   out.union_volume = CGAL::to_double(u_exact);
   out.exact = true;
   if (CGAL::is_zero(u_exact)) return out;

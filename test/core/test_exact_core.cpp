@@ -86,6 +86,8 @@ BOOST_AUTO_TEST_CASE(union_of_known_boxes) {
   BOOST_TEST(r.value == expect + 0.5, boost::test_tools::tolerance(1e-14));
   BOOST_TEST(r.terms == 8u);
   BOOST_TEST(union_volume(p, o, -1.0).value == expect + 0.5);
+  BOOST_TEST(exact_union_volume(p, &o) == exact_union_volume(p));
+  BOOST_TEST(CGAL::to_double(exact_union_volume(p, &o)) == expect + 0.5);
 }
 
 BOOST_AUTO_TEST_CASE(volume_loss_has_the_true_sign_down_to_one_ulp) {
@@ -101,6 +103,9 @@ BOOST_AUTO_TEST_CASE(volume_loss_has_the_true_sign_down_to_one_ulp) {
   VolumeLoss zero = volume_loss(hulls, shells_to(x1));
   BOOST_TEST(zero.value == 0.0);
   BOOST_TEST(zero.exact);
+  const std::vector<Overlap> pairs = find_overlaps(hulls);  // the pipeline's path
+  BOOST_TEST(volume_loss(hulls, shells_to(x1), &pairs).value == 0.0);
+  BOOST_TEST(volume_loss(hulls, shells_to(std::nextafter(x1, 0.0)), &pairs).value > 0.0);
   // One ulp more or less on one face: the loss is tiny but its sign is the true one.
   VolumeLoss grown = volume_loss(hulls, shells_to(std::nextafter(x1, 1.0)));
   BOOST_TEST(grown.value < 0.0);
