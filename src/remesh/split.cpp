@@ -23,6 +23,10 @@ constexpr int kRefine = 4;
 // shared models: 0.3 beat 0.02, 0.1 and 0.6 on most), else (a constraint in the way) relative to
 // the edge's length, far above the rounding of the new point.
 constexpr double kLiftShare = 0.3;
+// A split must gain at least this share of what its two new faces hold on average (area x
+// fatness): below it the faces and the smoothing time they cost buy little (measured on the
+// shared models: at 0.1 as fat as at 0 overall, fewer faces, about 8% less CPU on Pikachu).
+constexpr double kMinGain = 0.1;
 constexpr double kLifts[] = {1e-9, 1e-8, 1e-7};
 
 // The edge of halfedge a->b, in face abc, with face bad across.
@@ -94,6 +98,12 @@ std::size_t Workspace::split_pass(const ShellConstraints& constraints, double ma
   auto on_edge = [&](const Quad& q, double t) {
     return pt((1 - t) * vec(mesh.point(q.a)) + t * vec(mesh.point(q.b)));
   };
+  FatArea total;
+  for (F f : mesh.faces()) {
+    const H k = mesh.halfedge(f);
+    total.add(mesh.point(mesh.source(k)), mesh.point(mesh.target(k)), mesh.point(mesh.target(mesh.next(k))));
+  }
+  const double min_gain = kMinGain * 2 * total.fa / double(mesh.number_of_faces());
   std::vector<Entry> entries;
   for (auto e : mesh.edges()) {
     const Quad q = quad_of(mesh, mesh.halfedge(e));
@@ -109,7 +119,7 @@ std::size_t Workspace::split_pass(const ShellConstraints& constraints, double ma
         const double g = gain(q, old, on_edge(q, t));
         if (g > best) best = g, best_t = t;
       }
-    if (best > 0) entries.push_back({best, std::size_t(mesh.halfedge(e)), best_t});
+    if (best > min_gain) entries.push_back({best, std::size_t(mesh.halfedge(e)), best_t});
   }
   std::sort(entries.begin(), entries.end());
 
