@@ -10,13 +10,13 @@
 #include <cmath>
 #include <limits>
 
-#include "dcshell/fatness.h"
 #include "remesh/passes.h"
 
 namespace dcshell::remesh_detail {
 namespace {
 
-// Positions tried along the edge (t = k / kSteps, 0 < k < kSteps), then refined around the best.
+// Positions tried along the edge (t = k / kSteps, 0 < k < kSteps), then refined around the best
+// (bisecting the step kRefine times).
 constexpr int kSteps = 16;
 constexpr int kRefine = 4;
 // Lift above the edge: this share of the room below the nearest other face plane (measured on the
@@ -90,7 +90,12 @@ struct Entry {
 std::size_t Workspace::split_pass(const ShellConstraints& constraints, double max_volume, std::size_t max_splits) {
   if (max_splits == 0) return 0;
   // A split's gain in the area-weighted fatness F is, to first order, d_fa - F d_a.
-  const double fat = weighted_fatness(mesh);
+  FatArea total;
+  for (F f : mesh.faces()) {
+    const H k = mesh.halfedge(f);
+    total.add(mesh.point(mesh.source(k)), mesh.point(mesh.target(k)), mesh.point(mesh.target(mesh.next(k))));
+  }
+  const double fat = total.ratio(), min_gain = kMinGain * 2 * total.fa / double(mesh.number_of_faces());
   auto gain = [&](const Quad& q, const FatArea& old, const Point3& w) {
     const FatArea now = four_faces(mesh, q, w);
     return now.fa - old.fa - fat * (now.a - old.a);
@@ -98,16 +103,12 @@ std::size_t Workspace::split_pass(const ShellConstraints& constraints, double ma
   auto on_edge = [&](const Quad& q, double t) {
     return pt((1 - t) * vec(mesh.point(q.a)) + t * vec(mesh.point(q.b)));
   };
-  FatArea total;
-  for (F f : mesh.faces()) {
-    const H k = mesh.halfedge(f);
-    total.add(mesh.point(mesh.source(k)), mesh.point(mesh.target(k)), mesh.point(mesh.target(mesh.next(k))));
-  }
-  const double min_gain = kMinGain * 2 * total.fa / double(mesh.number_of_faces());
   std::vector<Entry> entries;
   for (auto e : mesh.edges()) {
     const Quad q = quad_of(mesh, mesh.halfedge(e));
     const FatArea old = two_faces(mesh, q);
+    // On the edge the four faces have the two's area, and fatness is at most 0.5.
+    if (0.5 * old.a - old.fa <= min_gain) continue;
     double best_t = 0.5, best = gain(q, old, on_edge(q, 0.5));
     for (int k = 1; k < kSteps; ++k) {
       const double t = double(k) / kSteps, g = gain(q, old, on_edge(q, t));
