@@ -28,8 +28,9 @@ struct RemeshOptions {
   /// order_by_gain) rather than least added volume first.
   bool order_by_gain = true;
   /// Each iteration may also split edges with lifted points (two faces each, paid from the faces
-  /// the collapses saved, up to max_faces or the input's), where that raises area x fatness: the
-  /// big hull slivers between few extreme points, which collapses cannot fix.
+  /// the collapses saved below the input's count; max_faces is left to the Steiner points), where
+  /// that raises area x fatness: the big hull slivers between few extreme points, which
+  /// collapses cannot fix.
   bool edge_splits = true;
   /// Called after each iteration with the working mesh (convex; for benchmarks and progress).
   std::function<void(int iteration, const Mesh& mesh)> on_iteration;
