@@ -162,7 +162,8 @@ int main(int argc, char** argv) {
   const char* env = std::getenv("DCSHELL_SHARED_DATA");
   std::string data = env ? env : "../shared/data", svg_dir, only;
   int iterations = 100, repeat = 3;
-  bool hulls_on = true, shells = true;
+  bool hulls_on = true, shells = true, splits = true;
+  double face_factor = 1;
   std::vector<double> ratios{0.01, 0.1, 1.0, 10.0};
   po::options_description opts("usage: bench_remesh [options]\n\noptions");
   opts.add_options()("help,h", "show this help")("data", po::value(&data), "shared data directory (holds composite/)")(
@@ -171,6 +172,9 @@ int main(int argc, char** argv) {
       "repeat", po::value(&repeat)->default_value(3), "timing runs (median)")(
       "hulls", po::value(&hulls_on)->default_value(true), "hull table and plots")(
       "shells", po::value(&shells)->default_value(true), "shell table (runs the pipeline)")(
+      "edge-splits", po::value(&splits)->default_value(true), "lifted edge splits (RemeshOptions::edge_splits)")(
+      "face-factor", po::value(&face_factor)->default_value(1.0),
+      "post-only: each shell may have this many times its plain faces (what more faces would buy)")(
       "breakdown", "per model: where the paper pipeline's area and fatness are (stderr)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
@@ -215,7 +219,9 @@ int main(int argc, char** argv) {
       const auto t0 = std::chrono::steady_clock::now();
       for (auto& h : hulls) {
         RemeshStats st;
-        f.add(remesh_convex_shell(h, std::vector<CutPlane>{}, RemeshOptions{}, &st));
+        RemeshOptions o;
+        o.edge_splits = splits;
+        f.add(remesh_convex_shell(h, std::vector<CutPlane>{}, o, &st));
         fa += st.faces_after;
         a += st.volume_before;
         b += st.volume_after;
@@ -232,6 +238,7 @@ int main(int argc, char** argv) {
         RemeshOptions o;
         o.iterations = iterations;
         o.max_volume_increase = ratio;
+        o.edge_splits = splits;
         o.on_iteration = [&](int k, const Mesh& m) { per[k - 1].add(m); };
         remesh_convex_shell(h, std::vector<CutPlane>{}, o);
       }
@@ -256,6 +263,7 @@ int main(int argc, char** argv) {
     std::vector<std::string> warnings;
     const auto parts = load_parts({dir.string()}, warnings);
     ShellOptions so;
+    so.edge_splits = splits;
     const ShellResult plain = build_shells(parts, so);
     so.simplify_iterations = 10;
     so.max_volume_increase = 0.05;
@@ -293,7 +301,12 @@ int main(int argc, char** argv) {
       post.assign(meshes.size(), Mesh());
       const auto t0 = std::chrono::steady_clock::now();
       // As `dcshell remesh` and the pipeline run it: one shell per core.
-      parallel_for(meshes.size(), [&](std::size_t k) { post[k] = remesh_convex_shell(meshes[k], cons[k], RemeshOptions{}); });
+      parallel_for(meshes.size(), [&](std::size_t k) {
+        RemeshOptions o;
+        o.edge_splits = splits;
+        o.max_faces = std::size_t(face_factor * double(meshes[k].number_of_faces()));
+        post[k] = remesh_convex_shell(meshes[k], cons[k], o);
+      });
       times.push_back(std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     }
     std::sort(times.begin(), times.end());

@@ -36,6 +36,8 @@ struct ShellOptions {
   double max_volume_increase = 0.05;
   /// Remeshing ends by giving flat facets (cut faces) their fattest triangulation (remesh.h).
   bool fatten_flat_facets = true;
+  /// ... and splits edges with lifted points where that makes the shells fatter (remesh.h).
+  bool edge_splits = true;
   /// Called with (stage, done, total) as work proceeds.
   std::function<void(const std::string&, std::size_t, std::size_t)> progress;
 };

@@ -27,6 +27,11 @@ struct RemeshOptions {
   /// Collapses ordered by the fatness they gain per unit of added volume (SimplifyOptions::
   /// order_by_gain) rather than least added volume first.
   bool order_by_gain = true;
+  /// Each iteration may also split edges with lifted points (two faces each, paid from the faces
+  /// the collapses saved below the input's count; max_faces is left to the Steiner points), where
+  /// that raises area x fatness: the big hull slivers between few extreme points, which
+  /// collapses cannot fix.
+  bool edge_splits = true;
   /// Called after each iteration with the working mesh (convex; for benchmarks and progress).
   std::function<void(int iteration, const Mesh& mesh)> on_iteration;
 };
@@ -35,7 +40,7 @@ struct RemeshStats {
   std::size_t faces_before = 0, faces_after = 0;
   double fatness_before = 0, fatness_after = 0;  ///< weighted_fatness
   double volume_before = 0, volume_after = 0;
-  std::size_t collapses = 0, moves = 0;
+  std::size_t collapses = 0, moves = 0, splits = 0;
   FlatFacetStats flat;  ///< the final flat-facet step
   double volume_increase() const { return volume_before > 0 ? volume_after / volume_before - 1.0 : 0.0; }
 };

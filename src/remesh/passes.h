@@ -33,6 +33,9 @@ class Workspace {
   /// One constrained-smoothing sweep over all vertices.
   std::size_t regularise_sweep(const std::vector<Point3>& enclose, const ShellConstraints& c, double max_volume,
                                RegulariseStats& st);
+  /// One pass of lifted edge splits (split.cpp): at most max_splits, each adding two faces and
+  /// raising the area x fatness sum, an independent set (no two share a face), within max_volume.
+  std::size_t split_pass(const ShellConstraints& c, double max_volume, std::size_t max_splits);
 
  private:
   void touched(const Star& s, V w);  // the stars of w and of its ring changed

@@ -52,6 +52,7 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
   Mesh m = convex_hull_mesh(original);
   const double v0 = mesh_volume(m);
   const std::size_t faces0 = triangle_count(shell);
+  const std::size_t allowed = options.max_faces > 0 ? options.max_faces : faces0;
   const int n = options.iterations;
   const double r = options.max_volume_increase;
   RemeshStats st;
@@ -81,9 +82,16 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
     const double max_volume = v0 * (1 + r) * (1 - kDomeReserve);
     for (int it = 1; it <= n; ++it) {
       const std::size_t c = ws.simplify_pass(constraints, so, sst);
+      // Splits after the collapses, which pay for them (up to the input's face count: max_faces is
+      // the Steiner points'), and before smoothing, which then moves the new points and their
+      // neighbours.
+      const std::size_t now = m.number_of_faces();
+      const std::size_t sp =
+          options.edge_splits && faces0 > now ? ws.split_pass(constraints, max_volume, (faces0 - now) / 2) : 0;
       const std::size_t mv = ws.regularise_sweep(original, constraints, max_volume, rst);
+      st.splits += sp;
       if (options.on_iteration) options.on_iteration(it, m);
-      if (c == 0 && mv == 0) {  // converged: later iterations would change nothing
+      if (c == 0 && mv == 0 && sp == 0) {  // converged: later iterations would change nothing
         if (options.on_iteration)
           for (int k = it + 1; k <= n; ++k) options.on_iteration(k, m);
         break;
@@ -102,7 +110,7 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
   for (auto v : out.vertices()) ok = ok && constraints.satisfied_by(out.point(v));
   if (!ok) {
     out = convex_hull_mesh(original);
-    st.collapses = st.moves = 0;
+    st.collapses = st.moves = st.splits = 0;
   }
   if (options.fatten_flat_facets && n > 0) {
     // Last, so that no collapse or move undoes it; it spends ~1e-9 of the volume, so the
@@ -110,7 +118,7 @@ Mesh remesh_convex_shell(const Mesh& shell, const ShellConstraints& constraints,
     const double first_sink = st.flat.max_inward;
     fo.max_volume = v0 * (1 + r) * (1 + 1e-12);
     // The faces collapses saved may buy Steiner points inside large facets (cut faces above all).
-    const std::size_t now = triangle_count(out), allowed = options.max_faces > 0 ? options.max_faces : faces0;
+    const std::size_t now = triangle_count(out);
     fo.extra_faces = options.steiner_points && allowed > now ? allowed - now : 0;
     out = fatten_flat_facets(out, constraints, fo, &st.flat);
     st.flat.max_inward += first_sink;  // the two sinks add up at most

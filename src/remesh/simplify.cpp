@@ -35,31 +35,18 @@ bool is_flat_target(const Mesh& m, const Star& s, V target) {
 
 // Sums of area x fatness and of area over the faces a replacement removes, and over the cone
 // that replaces them.
-struct FatArea {
-  double fa = 0, a = 0;
-  double ratio() const { return a > 0 ? fa / a : 0; }
-};
-
 FatArea star_fat_area(const Mesh& m, const Star& s) {
   FatArea r;
   for (F f : s.faces) {
     H h = m.halfedge(f);
-    const Point3 &p = m.point(m.source(h)), &q = m.point(m.target(h)), &t = m.point(m.target(m.next(h)));
-    const double area = std::sqrt(CGAL::squared_area(p, q, t));
-    r.fa += area * triangle_fatness(p, q, t);
-    r.a += area;
+    r.add(m.point(m.source(h)), m.point(m.target(h)), m.point(m.target(m.next(h))));
   }
   return r;
 }
 
 FatArea cone_fat_area(const Mesh& m, const Star& s, const Point3& w) {
   FatArea r;
-  for (std::size_t i = 0; i < s.ring.size(); ++i) {
-    const Point3 &q = m.point(s.ring[i]), &t = m.point(s.ring[(i + 1) % s.ring.size()]);
-    const double area = std::sqrt(CGAL::squared_area(w, q, t));
-    r.fa += area * triangle_fatness(w, q, t);
-    r.a += area;
-  }
+  for (std::size_t i = 0; i < s.ring.size(); ++i) r.add(w, m.point(s.ring[i]), m.point(s.ring[(i + 1) % s.ring.size()]));
   return r;
 }
 

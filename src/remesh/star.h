@@ -33,6 +33,14 @@ Star vertex_star(const Mesh& mesh, V v);
 /// Star of the edge of halfedge h (both end points replaced by one vertex).
 Star edge_star(const Mesh& mesh, H h);
 
+/// Sums of area x fatness and of area over some triangles (floating point): what the driver's
+/// choices trade, since the shell's area-weighted fatness is their ratio.
+struct FatArea {
+  double fa = 0, a = 0;
+  void add(const Point3& p, const Point3& q, const Point3& r);
+  double ratio() const { return a > 0 ? fa / a : 0; }
+};
+
 /// Local frame of a replacement: y = (x - origin) / scale keeps the LP/QP coefficients O(1).
 struct Frame {
   Eigen::Vector3d origin;

@@ -56,6 +56,10 @@ awk -F'[:,]' '/"faces_before"/ {fb=$2} /"faces_after"/ {if ($2 > fb) bad=1}
 "$bin" remesh --no-domes --out "$tmp/nd" "$tmp/left.obj" "$tmp/right.obj" 2> /dev/null || fail "--no-domes"
 awk -F'[:,]' '/"max_sink"/ {if ($2 != 0) bad=1} /"domed_facets"/ {if ($2 != 0) bad=1} END {exit bad}' \
   "$tmp/nd/report.json" || fail "--no-domes still domed"
+# Without splits none is made (the report counts them).
+"$bin" remesh --no-splits --out "$tmp/ns" "$tmp/left.obj" "$tmp/right.obj" 2> /dev/null || fail "--no-splits"
+awk -F'[:,]' '/"splits"/ {n++; if ($2 != 0) bad=1} END {if (n != 2) bad=1; exit bad}' "$tmp/ns/report.json" ||
+  fail "--no-splits still split"
 
 # Refuses an existing output, bad options and bad input: exit 2, nothing written.
 "$bin" remesh --out "$tmp/out" "$tmp/left.obj" 2> /dev/null; [ $? -eq 2 ] || fail "existing output dir"
