@@ -313,6 +313,7 @@ struct PairInfo {
   std::vector<Vec2> fixed_at;   // and their net positions
   bool shares = false;          // the pieces share a shell vertex (they touch in the folded shell)
   double safe_until = 0;        // proved disjoint from the state it was last examined at up to here
+  double Sp = 0, Sq = 0;        // sum of |fold angles| of up_p, up_q (constant along the path)
   int flat_apart = -1;          // faces do not overlap in the flat net (1), do (0), not tested yet (-1)
 };
 
@@ -346,6 +347,9 @@ class Checker {
   std::vector<Vec3> axis_w_a_, axis_w_u_;  // hinge axis of each piece in the current state
   std::vector<Poly> poly_;
   std::vector<Vec3> centre_;
+  // Velocity field of each piece relative to the root: v(x) = om_ x x - cv_ (sums of
+  // angle x axis and angle x axis x point over the hinges on its way to the root).
+  std::vector<Vec3> om_, cv_;
   // Scratch of plane_advance.
   std::vector<Vec3> pa_vel_, pa_dirs_;
   std::vector<double> pa_L_, pa_hz_, pa_hm_, pa_dz_, pa_dm_;
@@ -364,6 +368,7 @@ class Checker {
   double end_window(int p, int q, PairInfo& pi);
   double plane_window(int p, int q, const PairInfo& pi);
   double plane_advance(int p, int q, const PairInfo& pi);
+  double taylor_step(int p, int q, double d, double L, const PairInfo& pi) const;
   // S = the sum of |fold angles| on the tree path between pieces p and q (bounds their relative
   // angular speed and acceleration).
   double path_angle(int p, int q, const PairInfo& pi) const;
@@ -426,12 +431,17 @@ void Checker::place(double t) {
   T_.assign(nb, Rigid());
   axis_w_a_.assign(nb, Vec3::Zero());
   axis_w_u_.assign(nb, Vec3::UnitX());
+  om_.assign(nb, Vec3::Zero());
+  cv_.assign(nb, Vec3::Zero());
   for (int b = 1; b < nb; ++b) {  // parents first (breadth-first ids)
     const Piece& P = pc_[b];
     const Rigid& A = T_[P.parent];
     T_[b] = Motion::child_transform(A, P.hinge_a, P.hinge_u, t * P.angle);
     axis_w_a_[b] = A(P.hinge_a);
     axis_w_u_[b] = A.R * P.hinge_u;
+    const Vec3 w = P.angle * axis_w_u_[b];
+    om_[b] = om_[P.parent] + w;
+    cv_[b] = cv_[P.parent] + w.cross(axis_w_a_[b]);
   }
   poly_.resize(nb);
   centre_.resize(nb);
@@ -503,6 +513,8 @@ void Checker::classify(int p, int q, PairInfo& pi) {
     if (pc_[a].depth >= pc_[c].depth) pi.up_p.push_back(a), a = pc_[a].parent;
     else pi.up_q.push_back(c), c = pc_[c].parent;
   }
+  for (int b : pi.up_p) pi.Sp += std::abs(pc_[b].angle);
+  for (int b : pi.up_q) pi.Sq += std::abs(pc_[b].angle);
   if (pi.up_p.size() + pi.up_q.size() == 1) {
     // Adjacent pieces turn about one exact line l (their hinge). Their planes are distinct while
     // the turn stays in (0, pi), so they can meet only on l, where nothing moves relative to
@@ -616,6 +628,28 @@ bool Checker::near_fixed(const Piece& Q, int i, const PairInfo& pi, double S) co
   for (const Vec2& x : pi.fixed_at)
     if ((Q.hull[i] - x).norm() * std::max(S, 1.0) <= tol_) return true;
   return false;
+}
+
+// Distance advancement to second order, for pairs whose first-order lever bound limits the step
+// (pieces that move together, or slide along each other, travel far less than their levers
+// allow). The velocity of q relative to p is the affine field w(x) = W x x - C, exact at the
+// state, so its largest norm over q's hull is at a corner (V). A point driven by a chain of
+// rotations accelerates by at most 2 S L(x) (transport, centripetal and Coriolis terms; S, L
+// over all hinges between the pieces); L(x) <= L + Sp (|c_p - c_q| + r_q) for x in q (q's sphere
+// about p's hinges), and grows at most to 2 L(x) for s <= 1/(2S). So q's points travel at most
+// s V + 2 S L s^2 relative to p; the same holds with the roles swapped. d: distance minus tolerance.
+double Checker::taylor_step(int p, int q, double d, double L, const PairInfo& pi) const {
+  const Vec3 W = om_[q] - om_[p], C = cv_[q] - cv_[p];
+  const double S = pi.Sp + pi.Sq, cc = (centre_[p] - centre_[q]).norm();
+  if (!(S > 0)) return kInf;
+  double best = 0;
+  for (int b : {q, p}) {
+    double V = 0;
+    for (const Vec3& x : poly_[b].v) V = std::max(V, (W.cross(x) - C).norm());
+    const double a = 2 * S * (L + (b == q ? pi.Sp : pi.Sq) * (cc + pc_[b].radius));
+    best = std::max(best, 2 * d / (V + std::sqrt(V * V + 4 * a * d)));
+  }
+  return std::min(best, 0.5 / S);
 }
 
 double Checker::plane_advance(int p, int q, const PairInfo& pi) {
@@ -932,10 +966,15 @@ FoldCheckResult Checker::run() {
           arc->a = T.R * arc->a, arc->b = T.R * arc->b, arc->n = T.R * arc->n;
         }
         double d = arc_distance(A, B) - 1e-10;
-        double S = 0;
-        for (int b : pi.up_p) S += std::abs(pc_[b].angle);
-        for (int b : pi.up_q) S += std::abs(pc_[b].angle);
-        double hp = d / S < dt ? advance(p, q, pi) : 0;  // directions turn at most S rad per unit t relative to each other
+        const double S = pi.Sp + pi.Sq;
+        double hc = d / S;  // directions turn at most S rad per unit t relative to each other
+        if (d > 0 && hc < dt) {
+          // Second order: the relative turn is the exact angular velocity W now, plus at most
+          // the integral of |W'| <= S^2 / 2 (each axis turns with the hinges before it).
+          const double W = (om_[q] - om_[p]).norm();
+          hc = std::max(hc, 2 * d / (W + std::sqrt(W * W + S * S * d)));
+        }
+        double hp = hc < dt ? advance(p, q, pi) : 0;
         if (d <= 0 && hp > 0) {
           h = hp;
         } else if (d <= 0) {
@@ -943,17 +982,18 @@ FoldCheckResult Checker::run() {
           fail(t, p, q, at, at, t == 0 ? "touch beside their common corner in the flat net" : "cross at their common corner");
           return res;
         } else {
-          h = std::max(d / S, hp);
+          h = std::max(hc, hp);
         }
       } else {
         double d = polygon_distance(poly_[p], poly_[q], tol_) - tol_;
-        double L = 0, Sp = 0, Sq = 0;
+        double L = 0;
         // up_p is the start of p's way to the root: its levers are this step's first ones.
         const double *lp = &lever_[lever_off_[p]], *lq = &lever_[lever_off_[q]];
-        for (int b : pi.up_p) L += *lp++, Sp += std::abs(pc_[b].angle);
-        for (int b : pi.up_q) L += *lq++, Sq += std::abs(pc_[b].angle);
-        double S = std::max(Sp, Sq);
+        for (std::size_t k = 0; k < pi.up_p.size(); ++k) L += *lp++;
+        for (std::size_t k = 0; k < pi.up_q.size(); ++k) L += *lq++;
+        double S = std::max(pi.Sp, pi.Sq);
         double hd = d > 0 ? d / (L + d * S) : 0;  // travel(h, L, S) = d
+        if (d > 0 && hd < dt) hd = std::max(hd, taylor_step(p, q, d, L, pi));
         double hp = hd < dt ? advance(p, q, pi) : 0;
         if (d <= 0 && hp > 0) {
           h = hp;
