@@ -312,7 +312,6 @@ struct PairInfo {
   std::vector<int> fixed;       // shell vertices the two pieces keep in common along the path
   std::vector<Vec2> fixed_at;   // and their net positions
   bool shares = false;          // the pieces share a shell vertex (they touch in the folded shell)
-  double safe_until = 0;        // proved disjoint from the state it was last examined at up to here
   double Sp = 0, Sq = 0;        // sum of |fold angles| of up_p, up_q (constant along the path)
   int flat_apart = -1;          // faces do not overlap in the flat net (1), do (0), not tested yet (-1)
 };
@@ -332,7 +331,13 @@ class Checker {
   // Pairs examined so far (stable addresses), found through a dense p x q table while there are
   // at most kDensePieces pieces, else through a hash map.
   static constexpr int kDensePieces = 2048;
+  // The step loop skips most candidates (done, or covered beyond the step) reading only the
+  // slot (kDone) and two compact arrays per pair, not the pair's record.
+  static constexpr int kDone = -2;
   std::deque<PairInfo> pairs_;
+  // Per pair: proved disjoint from the state it was last examined at up to safe_until_, and by
+  // its end window from end_from_ = 1 - window on.
+  std::vector<double> safe_until_, end_from_;
   std::vector<int> pair_slot_;
   std::unordered_map<std::uint64_t, int> pair_map_;
   // |angle| x lever of each piece about each hinge on its way to the root (offset per piece),
@@ -362,7 +367,7 @@ class Checker {
     Vec3 w = centre_[piece] - axis_w_a_[joint];
     return std::abs(pc_[joint].angle) * ((w - w.dot(axis_w_u_[joint]) * axis_w_u_[joint]).norm() + pc_[piece].radius);
   }
-  PairInfo& info(int p, int q);
+  int& slot(int p, int q);  // kDone, or the pair's index in pairs_ (classified on first sight)
   bool flat_overlap(int p, int q) const;
   void classify(int p, int q, PairInfo& pi);
   double end_window(int p, int q, PairInfo& pi);
@@ -456,7 +461,7 @@ void Checker::place(double t) {
   }
 }
 
-PairInfo& Checker::info(int p, int q) {
+int& Checker::slot(int p, int q) {
   const int nb = static_cast<int>(pc_.size());
   int* slot;
   if (nb <= kDensePieces) {
@@ -464,13 +469,16 @@ PairInfo& Checker::info(int p, int q) {
     slot = &pair_slot_[static_cast<std::size_t>(p) * nb + q];
   } else {
     std::uint64_t key = (static_cast<std::uint64_t>(p) << 32) | static_cast<std::uint32_t>(q);
-    slot = &pair_map_.try_emplace(key, -1).first->second;
+    slot = &pair_map_.try_emplace(key, -1).first->second;  // references stay valid on rehash
   }
-  if (*slot >= 0) return pairs_[*slot];
-  *slot = static_cast<int>(pairs_.size());
+  if (*slot != -1) return *slot;
   pairs_.emplace_back();
-  classify(p, q, pairs_.back());
-  return pairs_.back();
+  PairInfo& pi = pairs_.back();
+  classify(p, q, pi);
+  safe_until_.push_back(0);
+  end_from_.push_back(1 - pi.window);
+  *slot = pi.done ? kDone : static_cast<int>(pairs_.size()) - 1;
+  return *slot;
 }
 
 // The hull's wedge at net point `at` as an arc of directions (in net coordinates, z = 0): the
@@ -613,12 +621,7 @@ void Checker::classify(int p, int q, PairInfo& pi) {
 // with M = 4 S L(x) as in the end window (s <= 1/(2S)): positive up to the positive root. A
 // corner within tol of the plane needs h' > 0 by a margin over rounding. Corners kept in common
 // on every hinge are excluded (they never move apart).
-double Checker::path_angle(int p, int q, const PairInfo& pi) const {
-  double S = 0;
-  for (int b : pi.up_p) S += std::abs(pc_[b].angle);
-  for (int b : pi.up_q) S += std::abs(pc_[b].angle);
-  return S;
-}
+double Checker::path_angle(int, int, const PairInfo& pi) const { return pi.Sp + pi.Sq; }
 
 // Hull corner i of Q counts as kept in common when it is a fixed corner, or lies so close to one
 // (a sliver's corners 1e-11 apart merge into one hull corner) that its whole travel relative to
@@ -630,9 +633,9 @@ bool Checker::near_fixed(const Piece& Q, int i, const PairInfo& pi, double S) co
   return false;
 }
 
-// Distance advancement to second order, for pairs whose first-order lever bound limits the step
-// (pieces that move together, or slide along each other, travel far less than their levers
-// allow). The velocity of q relative to p is the affine field w(x) = W x x - C, exact at the
+// Distance advancement to second order (every pair apart; the step taken is the larger of this
+// and the lever bound): pieces that move together, or slide along each other, travel far less
+// than their levers allow, and a longer proof is re-examined fewer times. The velocity of q relative to p is the affine field w(x) = W x x - C, exact at the
 // state, so its largest norm over q's hull is at a corner (V). A point driven by a chain of
 // rotations accelerates by at most 2 S L(x) (transport, centripetal and Coriolis terms; S, L
 // over all hinges between the pieces); L(x) <= L + Sp (|c_p - c_q| + r_q) for x in q (q's sphere
@@ -670,15 +673,16 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
   vel.assign(mq, Vec3::Zero());
   L.assign(mq, 0.0);
   fixed.assign(mq, 0);
+  // Velocity relative to p: the difference of the two pieces' fields (common hinges cancel).
+  const Vec3 W = om_[q] - om_[p], C = cv_[q] - cv_[p];
   for (int i = 0; i < mq; ++i) {
     const Vec3& x = xq[i];
     fixed[i] = near_fixed(Q, i, pi, S);
-    vel[i].setZero();
+    vel[i] = W.cross(x) - C;
     for (const auto* side : {&up_q, &up_p})
       for (int b : *side) {
         Vec3 w = x - axis_w_a_[b];
         const Vec3& u = axis_w_u_[b];
-        vel[i] += (side == &up_q ? 1 : -1) * pc_[b].angle * u.cross(w);
         L[i] += std::abs(pc_[b].angle) * (w - w.dot(u) * u).norm();
       }
   }
@@ -949,14 +953,15 @@ FoldCheckResult Checker::run() {
     double step = dt;
     int limit_p = -1, limit_q = -1;  // the pair that limits the step (reported at the step limit)
     for (auto [p, q] : cand) {
-      PairInfo& pi = info(p, q);
-      if (pi.done) continue;
-      if (t >= 1 - pi.window) {
-        pi.done = true;
+      int& id = slot(p, q);
+      if (id == kDone) continue;
+      if (t >= end_from_[id]) {
+        id = kDone;
         continue;
       }
       // Still covered by the proof made when it was last examined, beyond this step: skip.
-      if (pi.safe_until >= t + dt) continue;
+      if (safe_until_[id] >= t + dt) continue;
+      PairInfo& pi = pairs_[id];
       double h;  // how long from t this pair is proved apart
       if (pi.kind == PairKind::cone) {
         Arc A, B;
@@ -993,7 +998,7 @@ FoldCheckResult Checker::run() {
         for (std::size_t k = 0; k < pi.up_q.size(); ++k) L += *lq++;
         double S = std::max(pi.Sp, pi.Sq);
         double hd = d > 0 ? d / (L + d * S) : 0;  // travel(h, L, S) = d
-        if (d > 0 && hd < dt) hd = std::max(hd, taylor_step(p, q, d, L, pi));
+        if (d > 0) hd = std::max(hd, taylor_step(p, q, d, L, pi));
         double hp = hd < dt ? advance(p, q, pi) : 0;
         if (d <= 0 && hp > 0) {
           h = hp;
@@ -1005,8 +1010,8 @@ FoldCheckResult Checker::run() {
           h = std::max(hd, hp);
         }
       }
-      if (t + h >= 1 - pi.window) {
-        pi.done = true;
+      if (t + h >= end_from_[id]) {
+        id = kDone;
         continue;
       }
       if (h < opt_.min_step) {
@@ -1018,7 +1023,7 @@ FoldCheckResult Checker::run() {
         fail(t, p, q, centre_[p], centre_[q], why.str());
         return res;
       }
-      pi.safe_until = t + h;
+      safe_until_[id] = t + h;
       if (h < step) step = h, limit_p = p, limit_q = q;
     }
     dt = step;
