@@ -314,7 +314,7 @@ struct PairInfo {
   bool shares = false;          // the pieces share a shell vertex (they touch in the folded shell)
   double Sp = 0, Sq = 0;        // sum of |fold angles| of up_p, up_q (constant along the path)
   int flat_apart = -1;          // faces do not overlap in the flat net (1), do (0), not tested yet (-1)
-  int end_touch = -1;           // hulls within the tolerance at t = 1 (1), not (0), not tested yet (-1)
+  int end_touch = -1;           // hulls touch at t = 1, up to rounding (1), not (0), not tested yet (-1)
 };
 
 class Checker {
@@ -379,7 +379,7 @@ class Checker {
   bool unprovable_at_end(int p, int q, PairInfo& pi);
   // S = the sum of |fold angles| on the tree path between pieces p and q (bounds their relative
   // angular speed and acceleration).
-  double path_angle(int p, int q, const PairInfo& pi) const;
+  double path_angle(const PairInfo& pi) const { return pi.Sp + pi.Sq; }
   bool near_fixed(const Piece& Q, int i, const PairInfo& pi, double S) const;
   bool cone_arc(int p, const Vec2& at, Arc* arc) const;
   // The hull corner after corner i of piece p in direction step (+1 / -1) that is farther than
@@ -624,7 +624,6 @@ void Checker::classify(int p, int q, PairInfo& pi) {
 // with M = 4 S L(x) as in the end window (s <= 1/(2S)): positive up to the positive root. A
 // corner within tol of the plane needs h' > 0 by a margin over rounding. Corners kept in common
 // on every hinge are excluded (they never move apart).
-double Checker::path_angle(int, int, const PairInfo& pi) const { return pi.Sp + pi.Sq; }
 
 // Hull corner i of Q counts as kept in common when it is a fixed corner, or lies so close to one
 // (a sliver's corners 1e-11 apart merge into one hull corner) that its whole travel relative to
@@ -640,9 +639,9 @@ bool Checker::near_fixed(const Piece& Q, int i, const PairInfo& pi, double S) co
 // to rounding) can never be proved up to t = 1: distance advancement needs a distance above the
 // tolerance there (its step from t never reaches 1 - t: the travel to t = 1 is at least the
 // distance), and plane advancement a plane with all of q's corners strictly on its side at
-// t = 1, where a point of q's hull lies on p. Such a net is not verified whatever
-// the steps before, so the check stops when the pair limits the step instead of crawling
-// towards t = 1 (thousands of steps that shrink until min_step).
+// t = 1, where a point of q's hull lies on p. Such a net is not verified whatever the steps
+// before, so the check stops once the pair crawls (run()) instead of taking thousands of
+// shrinking steps towards t = 1 until min_step.
 bool Checker::unprovable_at_end(int p, int q, PairInfo& pi) {
   if (pi.kind != PairKind::general || pi.window > 0 || !pi.fixed.empty()) return false;
   if (pi.end_touch < 0) {
@@ -654,8 +653,9 @@ bool Checker::unprovable_at_end(int p, int q, PairInfo& pi) {
 
 // Distance advancement to second order (every pair apart; the step taken is the larger of this
 // and the lever bound): pieces that move together, or slide along each other, travel far less
-// than their levers allow, and a longer proof is re-examined fewer times. The velocity of q relative to p is the affine field w(x) = W x x - C, exact at the
-// state, so its largest norm over q's hull is at a corner (V). A point driven by a chain of
+// than their levers allow, and a longer proof is re-examined fewer times. The velocity of q
+// relative to p is the affine field w(x) = W x x - C, exact at the state, so its largest norm
+// over q's hull is at a corner (V). A point driven by a chain of
 // rotations accelerates by at most 2 S L(x) (transport, centripetal and Coriolis terms; S, L
 // over all hinges between the pieces); L(x) <= L + Sp (|c_p - c_q| + r_q) for x in q (q's sphere
 // about p's hinges), and grows at most to 2 L(x) for s <= 1/(2S). So q's points travel at most
@@ -678,7 +678,7 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
   const bool swapped = p > q;
   const std::vector<int>& up_p = swapped ? pi.up_q : pi.up_p;
   const std::vector<int>& up_q = swapped ? pi.up_p : pi.up_q;
-  const double S = path_angle(p, q, pi);
+  const double S = path_angle(pi);
   if (S <= 0) return 0;
   const Piece& Q = pc_[q];
   const std::vector<Vec3>&xp = poly_[p].v, &xq = poly_[q].v;
@@ -808,7 +808,7 @@ double Checker::plane_window(int p, int q, const PairInfo& pi) {
   const bool swapped = p > q;
   const std::vector<int>& up_p = swapped ? pi.up_q : pi.up_p;
   const std::vector<int>& up_q = swapped ? pi.up_p : pi.up_q;
-  const double S = path_angle(p, q, pi);
+  const double S = path_angle(pi);
   const Piece &P = pc_[p], &Q = pc_[q];
   const int mp = static_cast<int>(P.hull.size()), mq = static_cast<int>(Q.hull.size());
   std::vector<Vec3> xp(mp), xq(mq), vel(mq);
