@@ -42,8 +42,8 @@ struct FoldCheckOptions {
   /// counts as a collision; it also absorbs floating-point rounding of the folded coordinates.
   double tolerance = 1e-9;
   /// Second-order steps (distance and cone) from the pieces' exact relative velocity, and the
-  /// early stop at a pair that can never be proved up to t = 1 (doc/fold_check.md). Off: the
-  /// first-order check of before, for comparison (tests); the verdicts are meant to agree.
+  /// early stop at a pair that can never be proved up to t = 1 (doc/fold_check.md). Off:
+  /// first-order steps only and no early stop, for comparison (tests); the verdicts should agree.
   bool second_order = true;
 };
 
