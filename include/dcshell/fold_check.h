@@ -14,10 +14,13 @@
 //    advance by arc distance / (sum of the angular speeds between them);
 //  - end window: pieces that touch in the folded shell are separated near t = 1 by the plane of
 //    one of them: every other corner stays strictly inside it, proved for the touching corners
-//    from their exact velocity at t = 1 and a bound on the acceleration (Taylor, order 2).
+//    from their exact velocity at t = 1 and a bound on the acceleration (Taylor, order 2);
+//  - plane advancement: the same from the current state, for pairs at (nearly) zero distance.
+// Distance and cone steps also use the exact relative velocity now plus an acceleration bound.
 // It never verifies a path along which two pieces come closer than `tolerance` x net size (or
 // poke through a separating plane by more than that) other than at corners they share on their
-// fold lines. It reports the first state where it cannot proceed, with the two faces.
+// fold lines. It reports the first state where it cannot proceed, with the two faces (or, for a
+// pair that can never be proved up to t = 1, the state where its steps got short).
 #pragma once
 #include <Eigen/Core>
 #include <array>
@@ -38,6 +41,10 @@ struct FoldCheckOptions {
   /// Contact tolerance relative to the net size (diagonal of its bounding box): closer than this
   /// counts as a collision; it also absorbs floating-point rounding of the folded coordinates.
   double tolerance = 1e-9;
+  /// Second-order steps (distance and cone) from the pieces' exact relative velocity, and the
+  /// early stop at a pair that can never be proved up to t = 1 (doc/fold_check.md). Off:
+  /// first-order steps only and no early stop, for comparison (tests); the verdicts should agree.
+  bool second_order = true;
 };
 
 struct FoldCheckResult {

@@ -304,6 +304,44 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_every_squirtle_dc_shell_net) {
 // boxes CGAL's box_self_intersection_d reports, sorted, also when boxes only touch (equal
 // coordinates on a grid), share low x, and move past each other between calls (the sweep keeps
 // its order from the previous call). A pair it skipped would never be examined by the check.
+BOOST_AUTO_TEST_CASE(fold_check_second_order_agrees_with_the_first_order_check) {
+  // The second-order steps and the early stop at pairs that can never be proved up to t = 1 must
+  // give the first-order check's verdict on every net (a wrong bound would verify a net the
+  // first-order check cannot, or lose one): constructed flaps (colliding, mid-way collision,
+  // free), the Platonic solids, and (shared data) every part-hull net of Yoshi and Donkeykong,
+  // whose crawls (Donkeykong hull 9, Yoshi hull 15: thousands of steps) stop early. In total the
+  // second-order check takes fewer steps.
+  std::vector<std::pair<std::string, Net>> nets = {
+      {"crossing flaps", flap_net(-170 * deg, -170 * deg, {-0.8, 0.5}, {1.8, 0.5})},
+      {"free flaps", flap_net(-80 * deg, -80 * deg, {-0.8, 0.5}, {1.8, 0.5})},
+      {"mid-way flaps", flap_net(-160 * deg, -178 * deg, {-0.9, 0.5}, {1.8, 0.5})}};
+  UnfoldOptions o;
+  o.fold_candidates = 0;
+  for (auto& [name, mesh] : std::vector<std::pair<std::string, Mesh>>{
+           {"tetrahedron", tetrahedron()}, {"octahedron", octahedron()}, {"icosahedron", icosahedron()}})
+    nets.emplace_back(name, unfold_convex_mesh(mesh, o));
+  if (have_shared_data())
+    for (const std::string model : {"Yoshi", "Donkeykong"}) {
+      std::vector<std::string> warnings;
+      auto parts = load_parts({shared_data() + "/composite/" + model}, warnings);
+      for (std::size_t i = 0; i < parts.size(); ++i) {
+        Mesh h = convex_hull_mesh(parts[i].points);
+        if (!h.is_empty()) nets.emplace_back(model + " hull " + std::to_string(i), unfold_convex_mesh(h, o));
+      }
+    }
+  FoldCheckOptions first;
+  first.second_order = false;
+  long long steps_first = 0, steps_second = 0;
+  int verified = 0;
+  for (auto& [name, net] : nets) {
+    auto a = check_folding(net, first), b = check_folding(net);
+    BOOST_TEST(a.verified == b.verified, name << ": " << a.message << " / " << b.message);
+    steps_first += a.steps, steps_second += b.steps, verified += b.verified;
+  }
+  BOOST_TEST(verified >= 4);
+  BOOST_TEST(steps_second < steps_first);
+}
+
 BOOST_AUTO_TEST_CASE(fold_check_broad_phase_finds_every_meeting_pair_of_boxes) {
   using Box3 = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
   unfold_detail::BoxSweep sweep;
