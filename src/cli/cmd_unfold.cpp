@@ -237,21 +237,8 @@ int run_unfold(int argc, char** argv) {
       // check within the same work budget: undecided past it, never minutes.
       FoldCheckOptions fo;
       fo.max_work = std::max<long long>(uo.fold_work, 1);
-      // The work budget bounds the stepping, not the check's set-up, which grows faster than
-      // the number of rigid pieces (100,000 facets: 90 s and 10 GB): past kMaxFoldFacets the
-      // net is reported undecided without a check.
-      constexpr int kMaxFoldFacets = 20000;
-      if (s.stats.fold_checks > 0) {
-        s.fold = s.stats.fold;
-      } else if (s.stats.facets > kMaxFoldFacets) {
-        s.fold.verified = false;
-        s.fold.out_of_budget = true;
-        s.fold.t = 0;
-        s.fold.message = "folding not checked: " + std::to_string(s.stats.facets) + " facets (the check is limited to " +
-                         std::to_string(kMaxFoldFacets) + ")";
-      } else {
-        s.fold = check_folding(s.net, fo);
-      }
+      // Nets above FoldCheckOptions::max_pieces come back undecided without a check.
+      s.fold = s.stats.fold_checks > 0 ? s.stats.fold : check_folding(s.net, fo);
       s.seconds = seconds_since(ts);
     });
     std::set<std::string> used_names;

@@ -889,6 +889,13 @@ FoldCheckResult Checker::run() {
   FoldCheckResult res;
   const int nb = static_cast<int>(m_.body_root.size());
   res.pieces = nb;
+  if (opt_.max_pieces > 0 && nb > opt_.max_pieces) {
+    res.out_of_budget = true;
+    res.t = 0;
+    res.message = "folding not checked: " + std::to_string(nb) + " rigid pieces (the check is limited to " +
+                  std::to_string(opt_.max_pieces) + ")";
+    return res;
+  }
   {
     Vec2 lo(1e300, 1e300), hi(-1e300, -1e300);
     for (auto& c : net_.corners)
