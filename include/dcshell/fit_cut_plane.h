@@ -46,9 +46,9 @@ struct CutProblem {
   std::optional<ConvexPolytope> current_overlap;
 };
 
-/// a ∩ b with the faces from a tagged 0 and those from b tagged 1 (so the curve ∂a ∩ ∂b is
-/// the set of edges between a 0-face and a 1-face).
-ConvexPolytope tagged_intersection(const ConvexPolytope& a, const ConvexPolytope& b);
+/// `problem` itself when it carries its current overlap, else a copy in `storage` that does:
+/// what every entry point below starts with, so the overlap is computed once per call.
+const CutProblem& with_current_overlap(const CutProblem& problem, std::optional<CutProblem>& storage);
 
 struct CutOptions {
   CutMethod method = CutMethod::full;

@@ -38,6 +38,10 @@ CutPlane face_plane(const ConvexPolytope& p, std::size_t f);
 /// came from which operand.
 ConvexPolytope intersect(const ConvexPolytope& p, const ConvexPolytope& q);
 
+/// a ∩ b with the faces from a tagged 0 and those from b tagged 1 (so the curve ∂a ∩ ∂b is
+/// the set of edges between a 0-face and a 1-face).
+ConvexPolytope tagged_intersection(const ConvexPolytope& a, const ConvexPolytope& b);
+
 /// Volume (positive for outward faces; 0 for an empty polytope).
 double volume(const ConvexPolytope& p);
 

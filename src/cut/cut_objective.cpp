@@ -22,7 +22,7 @@ CutObjective::CutObjective(const CutProblem& pb, double lambda) : problem_(pb) {
   if (!pb.overlap.empty()) {
     range_points_ = pb.overlap.vertices;
   } else {
-    const ConvexPolytope ab = pb.current_overlap ? *pb.current_overlap : intersect(pb.a, pb.b);
+    const ConvexPolytope& ab = pb.current_overlap.value();  // with_current_overlap: every entry point
     if (!ab.empty()) {
       range_points_ = ab.vertices;
     } else {  // disjoint: any plane between (or through) the two is acceptable

@@ -11,6 +11,7 @@ namespace dcshell {
 
 class CutObjective {
  public:
+  /// `problem` must carry its current overlap (with_current_overlap).
   CutObjective(const CutProblem& problem, double lambda);
 
   /// The best plane with unit normal n: offset minimising g within the overlap's range.

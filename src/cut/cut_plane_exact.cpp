@@ -7,10 +7,11 @@
 
 namespace dcshell {
 
-CutPlane exact_cut_plane(const CutProblem& problem, const CutOptions& options) {
+CutPlane exact_cut_plane(const CutProblem& problem_in, const CutOptions& options) {
+  std::optional<CutProblem> storage;
+  const CutProblem& problem = with_current_overlap(problem_in, storage);
   CutObjective objective(problem, options.lambda);
-  const double overlap_volume =
-      problem.current_overlap ? volume(*problem.current_overlap) : volume(intersect(problem.a, problem.b));
+  const double overlap_volume = volume(*problem.current_overlap);
   // The SVM's penalty is fragile (the paper says so): the normal it gives for overlapping
   // hulls swings with it. Try a decade either side and let the exact objective choose.
   CutObjective::Best best;

@@ -99,7 +99,9 @@ Best polish(CutObjective& obj, const Best& start) {
 
 }  // namespace
 
-CutPlane full_cut_plane(const CutProblem& problem, const CutOptions& options) {
+CutPlane full_cut_plane(const CutProblem& problem_in, const CutOptions& options) {
+  std::optional<CutProblem> storage;
+  const CutProblem& problem = with_current_overlap(problem_in, storage);
   CutObjective obj(problem, options.lambda);
   const bool warm = options.warm_start.has_value();
   // Candidate normals, each with its exactly optimal offset.
@@ -112,9 +114,7 @@ CutPlane full_cut_plane(const CutProblem& problem, const CutOptions& options) {
     const CutPlane exact_plane = exact_cut_plane(problem, options);
     best = {exact_plane, obj.value(exact_plane)};
     dirs.push_back(exact_plane.normal);
-    dirs.push_back((problem.current_overlap ? lsf_cut_plane(problem.a, problem.b, *problem.current_overlap)
-                                            : lsf_cut_plane(problem.a, problem.b))
-                       .normal);
+    dirs.push_back(lsf_cut_plane(problem.a, problem.b, *problem.current_overlap).normal);
     const auto& pts = obj.range_points();
     if (pts.size() >= 3) {  // principal axes of the overlap
       Eigen::Vector3d m = Eigen::Vector3d::Zero();

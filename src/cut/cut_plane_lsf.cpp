@@ -6,7 +6,6 @@
 #include <cstdint>
 #include <unordered_map>
 
-#include "dcshell/fit_cut_plane.h"
 #include "dcshell/kernel.h"
 #include "dcshell/polytope_clip.h"
 

@@ -47,26 +47,18 @@ CutResult evaluate(CutObjective& obj, const CutProblem& pb, CutPlane plane) {
   return r;
 }
 
-// The problem with its current overlap computed: a copy only when the caller left it unset.
-const CutProblem& completed(const CutProblem& problem, std::optional<CutProblem>& storage) {
+}  // namespace
+
+const CutProblem& with_current_overlap(const CutProblem& problem, std::optional<CutProblem>& storage) {
   if (problem.current_overlap) return problem;
   storage.emplace(problem);
   storage->current_overlap = tagged_intersection(problem.a, problem.b);
   return *storage;
 }
 
-}  // namespace
-
-ConvexPolytope tagged_intersection(const ConvexPolytope& a, const ConvexPolytope& b) {
-  ConvexPolytope ta = a, tb = b;
-  ta.face_tags.assign(ta.faces.size(), 0);
-  tb.face_tags.assign(tb.faces.size(), 1);
-  return intersect(ta, tb);
-}
-
 CutResult evaluate_cut_plane(const CutProblem& problem_in, const CutPlane& plane, double lambda) {
   std::optional<CutProblem> storage;
-  const CutProblem& problem = completed(problem_in, storage);
+  const CutProblem& problem = with_current_overlap(problem_in, storage);
   CutObjective obj(problem, lambda);
   return evaluate(obj, problem, plane);
 }
@@ -74,7 +66,7 @@ CutResult evaluate_cut_plane(const CutProblem& problem_in, const CutPlane& plane
 CutResult fit_cut_plane(const CutProblem& problem_in, const CutOptions& options) {
   const auto t0 = std::chrono::steady_clock::now();
   std::optional<CutProblem> storage;
-  const CutProblem& problem = completed(problem_in, storage);
+  const CutProblem& problem = with_current_overlap(problem_in, storage);
   CutPlane plane;
   switch (options.method) {
     case CutMethod::lsf: plane = lsf_cut_plane(problem.a, problem.b, *problem.current_overlap); break;

@@ -238,6 +238,13 @@ ConvexPolytope intersect(const ConvexPolytope& p, const ConvexPolytope& q) {
   return r;
 }
 
+ConvexPolytope tagged_intersection(const ConvexPolytope& a, const ConvexPolytope& b) {
+  ConvexPolytope ta = a, tb = b;
+  ta.face_tags.assign(ta.faces.size(), 0);
+  tb.face_tags.assign(tb.faces.size(), 1);
+  return intersect(ta, tb);
+}
+
 double volume(const ConvexPolytope& p) {
   if (p.empty()) return 0.0;
   const Eigen::Vector3d r = p.vertices[p.faces[0][0]];
