@@ -16,19 +16,21 @@ double triangle_fatness(const Point3& a, const Point3& b, const Point3& c) {
   return f > 0 ? f : 0.0;  // a collinear triangle gives 0 up to rounding
 }
 
+void FatArea::add(const Point3& p, const Point3& q, const Point3& r) {
+  const double area = std::sqrt(CGAL::to_double(CGAL::squared_area(p, q, r)));
+  fa += area * triangle_fatness(p, q, r);
+  a += area;
+}
+
 double weighted_fatness(const Mesh& mesh) {
-  double sum = 0, area = 0;
+  FatArea sum;
   for (auto f : mesh.faces()) {
     auto h0 = mesh.halfedge(f);
     const Point3& p = mesh.point(mesh.source(h0));
-    for (auto h = mesh.next(h0); mesh.target(h) != mesh.source(h0); h = mesh.next(h)) {
-      const Point3 &q = mesh.point(mesh.source(h)), &r = mesh.point(mesh.target(h));
-      const double A = std::sqrt(CGAL::to_double(CGAL::squared_area(p, q, r)));
-      sum += A * triangle_fatness(p, q, r);
-      area += A;
-    }
+    for (auto h = mesh.next(h0); mesh.target(h) != mesh.source(h0); h = mesh.next(h))
+      sum.add(p, mesh.point(mesh.source(h)), mesh.point(mesh.target(h)));
   }
-  return area > 0 ? sum / area : 0.0;
+  return sum.ratio();
 }
 
 }  // namespace dcshell

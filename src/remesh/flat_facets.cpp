@@ -276,11 +276,12 @@ bool facet_geometry(const Mesh& mesh, const Groups& g, int k, Facet& fc) {
   // The dome must rise above the facet's own unevenness and the coordinates' rounding.
   fc.noise = fc.dev + ulp_noise(p);
   fc.area = g.area[k];
+  FatArea now;
   for (F f : g.faces[k]) {
     const H h = mesh.halfedge(f);
-    const Point3 &a = mesh.point(mesh.source(h)), &b = mesh.point(mesh.target(h)), &cc = mesh.point(mesh.target(mesh.next(h)));
-    fc.current += std::sqrt(CGAL::to_double(CGAL::squared_area(a, b, cc))) * triangle_fatness(a, b, cc);
+    now.add(mesh.point(mesh.source(h)), mesh.point(mesh.target(h)), mesh.point(mesh.target(mesh.next(h))));
   }
+  fc.current = now.fa;
   return true;
 }
 

@@ -4,9 +4,6 @@
 #include <CGAL/Exact_rational.h>
 
 #include <algorithm>
-#include <cmath>
-
-#include "dcshell/fatness.h"
 
 namespace dcshell::remesh_detail {
 namespace {
@@ -80,12 +77,6 @@ Star edge_star(const Mesh& m, H h) {
   finish(m, s);
   if (s.valid && (ru.size() < 3 || rv.size() < 3 || ru.back() != rv[1] || ru[1] != rv.back())) s.valid = false;
   return s;
-}
-
-void FatArea::add(const Point3& p, const Point3& q, const Point3& r) {
-  const double area = std::sqrt(CGAL::squared_area(p, q, r));
-  fa += area * triangle_fatness(p, q, r);
-  a += area;
 }
 
 void add_constraint_rows(const ShellConstraints& c, const Frame& f, double margin, std::vector<Row>& rows) {

@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 #include <vector>
 
+#include "dcshell/fatness.h"  // FatArea: what the moves trade
 #include "dcshell/kernel.h"
 #include "dcshell/simplify.h"
 #include "remesh/qp3.h"
@@ -32,14 +33,6 @@ struct Star {
 Star vertex_star(const Mesh& mesh, V v);
 /// Star of the edge of halfedge h (both end points replaced by one vertex).
 Star edge_star(const Mesh& mesh, H h);
-
-/// Sums of area x fatness and of area over some triangles (floating point): what the driver's
-/// choices trade, since the shell's area-weighted fatness is their ratio.
-struct FatArea {
-  double fa = 0, a = 0;
-  void add(const Point3& p, const Point3& q, const Point3& r);
-  double ratio() const { return a > 0 ? fa / a : 0; }
-};
 
 /// Local frame of a replacement: y = (x - origin) / scale keeps the LP/QP coefficients O(1).
 struct Frame {
