@@ -512,6 +512,35 @@ BOOST_AUTO_TEST_CASE(unconstrained_flat_caps_bulge_outward_and_enclose) {
   BOOST_CHECK(mesh_points(same) == mesh_points(hull));
 }
 
+BOOST_AUTO_TEST_CASE(facets_whose_domes_fail_together_are_domed_one_at_a_time) {
+  // The drum's two caps bulge outward at about the same cost each. With a volume bound that
+  // pays for one cap but not both, the whole result fails; the facet-by-facet fallback still
+  // domes one cap (before it, the input came back unchanged: the test can fail).
+  std::vector<Point3> pts;
+  for (int i = 0; i < 40; ++i) {
+    const double t = 2 * M_PI * i / 40;
+    pts.emplace_back(std::cos(t), 0.5 * std::sin(t), 0);
+    pts.emplace_back(std::cos(t), 0.5 * std::sin(t), 0.25);
+  }
+  const Mesh hull = convex_hull_mesh(pts);
+  const double v0 = volume(hull);
+  const Mesh both = fatten_flat_facets(hull, ShellConstraints{});
+  const double cost = volume(both) - v0;
+  BOOST_REQUIRE_GT(cost, 0);
+  FlatFacetOptions one;
+  one.max_volume = v0 + 0.6 * cost;
+  FlatFacetStats st;
+  const Mesh out = fatten_flat_facets(hull, ShellConstraints{}, one, &st);
+  BOOST_CHECK_EQUAL(st.outward + st.inward, 1u);
+  BOOST_CHECK_GT(st.fatness_after, st.fatness_before);
+  BOOST_CHECK_GT(weighted_fatness(out), weighted_fatness(hull));
+  BOOST_CHECK_LT(weighted_fatness(out), weighted_fatness(both));
+  BOOST_CHECK(check_convexity(out).ok());
+  BOOST_CHECK(encloses(out, pts));
+  BOOST_CHECK_LE(volume(out), one.max_volume);
+  BOOST_CHECK_LE(out.number_of_faces(), hull.number_of_faces());
+}
+
 BOOST_AUTO_TEST_CASE(shared_face_sinks_on_both_sides_and_stays_disjoint) {
   const std::vector<Mesh> shells = halves_sharing_a_polygon(16, 0.3).shells;
   const auto cons = neighbour_constraints(shells);
