@@ -491,7 +491,7 @@ bool fatten(const Mesh& mesh, const ShellConstraints& constraints, const FlatFac
   }
   // One facet's dome can spoil the whole result (a corner it moves leaves an old vertex outside
   // where no push is allowed, a vertex drops off the hull, the result is less fat): on Bowser's
-  // pipeline shells 9 of 28 final domes were rejected whole, about half of the planned gain. So
+  // pipeline shells 8 of 28 final domes were rejected whole, about half of the planned gain. So
   // facets are then added one at a time, largest planned gain first, each kept only when the
   // result with it passes every check and is fatter than without it; each of a facet's plans
   // (Steiner points first) is tried in turn. At most kMaxFallbackTries results are computed
