@@ -40,19 +40,25 @@ class BoxSweep {
           found_.emplace_back(std::min(a, b), std::max(a, b));
       }
     }
-    // Sorted: a counting sort by the first box, then each one's few partners.
-    bucket_.assign(n + 1, 0);
-    for (const auto& pq : found_) ++bucket_[pq.first + 1];
-    for (int i = 0; i < n; ++i) bucket_[i + 1] += bucket_[i];
-    fill_.assign(bucket_.begin(), bucket_.end() - 1);
-    out.resize(found_.size());
-    for (const auto& pq : found_) out[fill_[pq.first]++] = pq;
-    for (int i = 0; i < n; ++i) std::sort(out.begin() + bucket_[i], out.begin() + bucket_[i + 1]);
+    // Sorted: a radix sort of two stable counting sorts, by the second box, then by the first.
+    by_second_.resize(found_.size());
+    counting_sort(found_, by_second_, n, [](const std::pair<int, int>& pq) { return pq.second; });
+    counting_sort(by_second_, out, n, [](const std::pair<int, int>& pq) { return pq.first; });
   }
 
  private:
-  std::vector<int> order_, bucket_, fill_;
-  std::vector<std::pair<int, int>> found_;
+  // Stable: pairs with the same key keep their order in `in`.
+  template <class Key>
+  void counting_sort(const std::vector<std::pair<int, int>>& in, std::vector<std::pair<int, int>>& out, int n, Key key) {
+    fill_.assign(n + 1, 0);
+    for (const auto& pq : in) ++fill_[key(pq) + 1];
+    for (int i = 0; i < n; ++i) fill_[i + 1] += fill_[i];
+    out.resize(in.size());
+    for (const auto& pq : in) out[fill_[key(pq)]++] = pq;
+  }
+
+  std::vector<int> order_, fill_;
+  std::vector<std::pair<int, int>> found_, by_second_;
 };
 
 }  // namespace dcshell::unfold_detail

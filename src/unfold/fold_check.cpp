@@ -254,7 +254,9 @@ double polygon_distance(const Poly& A, const Poly& B, double margin) {
     const Vec3 ma_i = 0.5 * (a0 + a1);
     const double ha = 0.5 * (a1 - a0).norm();
     for (int j = 0; j < mb; ++j) {
-      if ((ma_i - mid[j]).norm() - ha - half[j] > d + margin) continue;  // lower bound above the minimum
+      // Lower bound above the minimum (compared squared, without a root: both sides are >= 0).
+      const double reach = d + margin + ha + half[j];
+      if ((ma_i - mid[j]).squaredNorm() > reach * reach) continue;
       d = std::min(d, segment_distance(a0, a1, B.v[j], B.v[(j + 1) % mb]));
     }
   }
