@@ -28,16 +28,20 @@ class BoxSweep {
       for (; j > 0 && before(x, s[j - 1]); --j) s[j] = s[j - 1];
       s[j] = x;
     }
+    // The boxes' coordinates in sweep order, one array per bound: the scan below reads them in
+    // sequence (most of its tests fail, so it is bound by the reads).
+    for (auto& c : sorted_) c.resize(n);
+    for (int i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d) sorted_[d][i] = lo[3 * s[i] + d], sorted_[3 + d][i] = hi[3 * s[i] + d];
+    const double *lx = sorted_[0].data(), *ly = sorted_[1].data(), *lz = sorted_[2].data();
+    const double *hx = sorted_[3].data(), *hy = sorted_[4].data(), *hz = sorted_[5].data();
     found_.clear();
     for (int i = 0; i < n; ++i) {
-      const int a = s[i];
-      const double ahx = hi[3 * a], aly = lo[3 * a + 1], ahy = hi[3 * a + 1], alz = lo[3 * a + 2], ahz = hi[3 * a + 2];
+      const double ahx = hx[i], alx = lx[i], aly = ly[i], ahy = hy[i], alz = lz[i], ahz = hz[i];
       for (int j = i + 1; j < n; ++j) {
-        const int b = s[j];
-        if (lo[3 * b] > ahx) break;  // sorted by low x: no later box reaches a's x range
-        if (hi[3 * b] >= lo[3 * a] && hi[3 * b + 1] >= aly && lo[3 * b + 1] <= ahy && hi[3 * b + 2] >= alz &&
-            lo[3 * b + 2] <= ahz)
-          found_.emplace_back(std::min(a, b), std::max(a, b));
+        if (lx[j] > ahx) break;  // sorted by low x: no later box reaches a's x range
+        if (hx[j] >= alx && hy[j] >= aly && ly[j] <= ahy && hz[j] >= alz && lz[j] <= ahz)
+          found_.emplace_back(std::min(s[i], s[j]), std::max(s[i], s[j]));
       }
     }
     // Sorted: a radix sort of two stable counting sorts, by the second box, then by the first.
@@ -58,6 +62,7 @@ class BoxSweep {
   }
 
   std::vector<int> order_, fill_;
+  std::vector<double> sorted_[6];  // low x, y, z, high x, y, z in sweep order
   std::vector<std::pair<int, int>> found_, by_second_;
 };
 
