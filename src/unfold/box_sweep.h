@@ -28,31 +28,42 @@ class BoxSweep {
       for (; j > 0 && before(x, s[j - 1]); --j) s[j] = s[j - 1];
       s[j] = x;
     }
+    // The boxes' coordinates in sweep order, one array per bound: the scan below reads them in
+    // sequence (most of its tests fail, so it is bound by the reads).
+    for (auto& c : sorted_) c.resize(n);
+    for (int i = 0; i < n; ++i)
+      for (int d = 0; d < 3; ++d) sorted_[d][i] = lo[3 * s[i] + d], sorted_[3 + d][i] = hi[3 * s[i] + d];
+    const double *lx = sorted_[0].data(), *ly = sorted_[1].data(), *lz = sorted_[2].data();
+    const double *hx = sorted_[3].data(), *hy = sorted_[4].data(), *hz = sorted_[5].data();
     found_.clear();
     for (int i = 0; i < n; ++i) {
-      const int a = s[i];
-      const double ahx = hi[3 * a], aly = lo[3 * a + 1], ahy = hi[3 * a + 1], alz = lo[3 * a + 2], ahz = hi[3 * a + 2];
+      const double ahx = hx[i], alx = lx[i], aly = ly[i], ahy = hy[i], alz = lz[i], ahz = hz[i];
       for (int j = i + 1; j < n; ++j) {
-        const int b = s[j];
-        if (lo[3 * b] > ahx) break;  // sorted by low x: no later box reaches a's x range
-        if (hi[3 * b] >= lo[3 * a] && hi[3 * b + 1] >= aly && lo[3 * b + 1] <= ahy && hi[3 * b + 2] >= alz &&
-            lo[3 * b + 2] <= ahz)
-          found_.emplace_back(std::min(a, b), std::max(a, b));
+        if (lx[j] > ahx) break;  // sorted by low x: no later box reaches a's x range
+        if (hx[j] >= alx && hy[j] >= aly && ly[j] <= ahy && hz[j] >= alz && lz[j] <= ahz)
+          found_.emplace_back(std::min(s[i], s[j]), std::max(s[i], s[j]));
       }
     }
-    // Sorted: a counting sort by the first box, then each one's few partners.
-    bucket_.assign(n + 1, 0);
-    for (const auto& pq : found_) ++bucket_[pq.first + 1];
-    for (int i = 0; i < n; ++i) bucket_[i + 1] += bucket_[i];
-    fill_.assign(bucket_.begin(), bucket_.end() - 1);
-    out.resize(found_.size());
-    for (const auto& pq : found_) out[fill_[pq.first]++] = pq;
-    for (int i = 0; i < n; ++i) std::sort(out.begin() + bucket_[i], out.begin() + bucket_[i + 1]);
+    // Sorted: a radix sort of two stable counting sorts, by the second box, then by the first.
+    by_second_.resize(found_.size());
+    counting_sort(found_, by_second_, n, [](const std::pair<int, int>& pq) { return pq.second; });
+    counting_sort(by_second_, out, n, [](const std::pair<int, int>& pq) { return pq.first; });
   }
 
  private:
-  std::vector<int> order_, bucket_, fill_;
-  std::vector<std::pair<int, int>> found_;
+  // Stable: pairs with the same key keep their order in `in`.
+  template <class Key>
+  void counting_sort(const std::vector<std::pair<int, int>>& in, std::vector<std::pair<int, int>>& out, int n, Key key) {
+    fill_.assign(n + 1, 0);
+    for (const auto& pq : in) ++fill_[key(pq) + 1];
+    for (int i = 0; i < n; ++i) fill_[i + 1] += fill_[i];
+    out.resize(in.size());
+    for (const auto& pq : in) out[fill_[key(pq)]++] = pq;
+  }
+
+  std::vector<int> order_, fill_;
+  std::vector<double> sorted_[6];  // low x, y, z, high x, y, z in sweep order
+  std::vector<std::pair<int, int>> found_, by_second_;
 };
 
 }  // namespace dcshell::unfold_detail

@@ -254,7 +254,9 @@ double polygon_distance(const Poly& A, const Poly& B, double margin) {
     const Vec3 ma_i = 0.5 * (a0 + a1);
     const double ha = 0.5 * (a1 - a0).norm();
     for (int j = 0; j < mb; ++j) {
-      if ((ma_i - mid[j]).norm() - ha - half[j] > d + margin) continue;  // lower bound above the minimum
+      // Lower bound above the minimum (compared squared, without a root: both sides are >= 0).
+      const double reach = d + margin + ha + half[j];
+      if ((ma_i - mid[j]).squaredNorm() > reach * reach) continue;
       d = std::min(d, segment_distance(a0, a1, B.v[j], B.v[(j + 1) % mb]));
     }
   }
@@ -361,6 +363,10 @@ class Checker {
   std::vector<Vec3> pa_vel_, pa_dirs_;
   std::vector<double> pa_L_, pa_hz_, pa_hm_, pa_dz_, pa_dm_;
   std::vector<char> pa_fixed_;
+  // Scratch of plane_window.
+  std::vector<Vec3> pw_xp_, pw_xq_, pw_vel_;
+  std::vector<double> pw_L_;
+  std::vector<char> pw_fixed_;
   unfold_detail::BoxSweep sweep_;  // broad phase
 
   void build_pieces();
@@ -811,9 +817,13 @@ double Checker::plane_window(int p, int q, const PairInfo& pi) {
   const double S = path_angle(pi);
   const Piece &P = pc_[p], &Q = pc_[q];
   const int mp = static_cast<int>(P.hull.size()), mq = static_cast<int>(Q.hull.size());
-  std::vector<Vec3> xp(mp), xq(mq), vel(mq);
-  std::vector<double> L(mq, 0.0);
-  std::vector<char> fixed(mq, 0);
+  // Scratch arrays of the checker (every pair met is given its window: no allocation per pair).
+  std::vector<Vec3>&xp = pw_xp_, &xq = pw_xq_, &vel = pw_vel_;
+  std::vector<double>& L = pw_L_;
+  std::vector<char>& fixed = pw_fixed_;
+  xp.resize(mp), xq.resize(mq), vel.resize(mq);
+  L.assign(mq, 0.0);
+  fixed.assign(mq, 0);
   for (int i = 0; i < mp; ++i) xp[i] = T1[p](lift(P.hull[i]));
   for (int i = 0; i < mq; ++i) {
     const Vec3 x = xq[i] = T1[q](lift(Q.hull[i]));
@@ -860,9 +870,9 @@ double Checker::plane_window(int p, int q, const PairInfo& pi) {
     // Outward normals (in p's plane) of the hull edges at corner i, and their bisector.
     Vec3 e_next = xp[hull_step(p, i, 1)] - xp[i], e_prev = xp[i] - xp[hull_step(p, i, -1)];
     Vec3 m1 = e_next.cross(-inward).normalized(), m0 = e_prev.cross(-inward).normalized();
-    std::vector<Vec3> ms{m0, m1};
-    if ((m0 + m1).norm() > 1e-12) ms.push_back((m0 + m1).normalized());
-    else ms.push_back(e_next.normalized());  // a two-corner hull (sliver): tilt about its end too
+    // And the bisector; a two-corner hull (sliver) tilts about its end instead.
+    const Vec3 bisector = (m0 + m1).norm() > 1e-12 ? Vec3((m0 + m1).normalized()) : Vec3(e_next.normalized());
+    const Vec3 ms[3] = {m0, m1, bisector};
     for (const Vec3& m : ms)
       for (int k = 0; k < 16; ++k) {
         best = std::max(best, window_for(kTilt[k][0] * inward + kTilt[k][1] * m, xp[i]));
