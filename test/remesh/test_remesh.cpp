@@ -488,15 +488,21 @@ BOOST_AUTO_TEST_CASE(neighbours_with_steiner_points_stay_disjoint) {
   BOOST_CHECK(certify(out).certified());
 }
 
-BOOST_AUTO_TEST_CASE(unconstrained_flat_caps_bulge_outward_and_enclose) {
-  // The drum's caps are exactly flat fans of slivers; with no constraint they rise outward, so
-  // the result still encloses every input point exactly.
+// An elliptic drum of 40 corners per cap: both caps are exactly flat fans of slivers.
+static std::vector<Point3> drum_points() {
   std::vector<Point3> pts;
   for (int i = 0; i < 40; ++i) {
     const double t = 2 * M_PI * i / 40;
     pts.emplace_back(std::cos(t), 0.5 * std::sin(t), 0);
     pts.emplace_back(std::cos(t), 0.5 * std::sin(t), 0.25);
   }
+  return pts;
+}
+
+BOOST_AUTO_TEST_CASE(unconstrained_flat_caps_bulge_outward_and_enclose) {
+  // The drum's caps are exactly flat fans of slivers; with no constraint they rise outward, so
+  // the result still encloses every input point exactly.
+  const std::vector<Point3> pts = drum_points();
   const Mesh hull = convex_hull_mesh(pts);
   FlatFacetStats st;
   const Mesh out = fatten_flat_facets(hull, ShellConstraints{}, FlatFacetOptions{}, &st);
@@ -516,12 +522,7 @@ BOOST_AUTO_TEST_CASE(facets_whose_domes_fail_together_are_domed_one_at_a_time) {
   // The drum's two caps bulge outward at about the same cost each. With a volume bound that
   // pays for one cap but not both, the whole result fails; the facet-by-facet fallback still
   // domes one cap (before it, the input came back unchanged: the test can fail).
-  std::vector<Point3> pts;
-  for (int i = 0; i < 40; ++i) {
-    const double t = 2 * M_PI * i / 40;
-    pts.emplace_back(std::cos(t), 0.5 * std::sin(t), 0);
-    pts.emplace_back(std::cos(t), 0.5 * std::sin(t), 0.25);
-  }
+  const std::vector<Point3> pts = drum_points();
   const Mesh hull = convex_hull_mesh(pts);
   const double v0 = volume(hull);
   const Mesh both = fatten_flat_facets(hull, ShellConstraints{});
