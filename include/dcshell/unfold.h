@@ -20,7 +20,7 @@ namespace dcshell {
 /// How the cut tree is chosen. `best`: every heuristic with retries, the best overlap-free net
 /// by the objective. `ga`: `best`, then the genetic search of unfold_ga.h seeded with its nets.
 /// `greedy`: overlap-aware Kruskal (longest fold first, a join that would overlap is refused),
-/// which `best` and `ga` also try with the cut-length objective.
+/// which `best` and `ga` also try (its variants; see doc/unfold.md, "Cut tree").
 enum class UnfoldHeuristic { best, steepest, flat, min_perimeter, random, ga, greedy };
 /// What "best" means among overlap-free nets (the other feature breaks ties, weight 1/100).
 enum class UnfoldObjective { hull_area, cut_length };
