@@ -167,7 +167,7 @@ int run_unfold(int argc, char** argv) {
         "fold-slack", po::value(&fold_slack)->default_value(UnfoldOptions{}.fold_slack),
         "check the folding of nets up to this fraction worse (objective) than the best; 0: the best only")(
         "fold-work", po::value(&fold_work)->default_value(UnfoldOptions{}.fold_work),
-        "work budget of the folding checks per shell (pieces placed; a count, not a time)");
+        "work budget of the folding checks per shell of up to 200 faces, scaled with the faces up to 3x (pieces placed; a count, not a time)");
     std::vector<std::string> inputs;
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;

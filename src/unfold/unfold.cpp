@@ -576,7 +576,10 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
   Net net;
   bool have = false;
   if (checks > 0) {
-    long long work = options.fold_work;
+    // The budgets count pieces placed, so a large net would get few steps per check: scaled
+    // with the shell's faces (up to 3x: past that, mostly time spent on nets that never verify).
+    const double scale = std::clamp(static_cast<double>(g.F.size()) / 200.0, 1.0, 3.0);
+    long long work = static_cast<long long>(static_cast<double>(options.fold_work) * scale);
     std::unordered_set<std::uint64_t> seen;
     for (const auto& c : search.evaluated) seen.insert(tree_hash(folded_groups(g, c.genome)));
     struct Deferred {
@@ -611,7 +614,8 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
       return fc.verified;
     };
     bool done = false;
-    auto first_budget = [&] { return std::min(options.fold_first_work, work); };
+    const long long first_work = static_cast<long long>(static_cast<double>(options.fold_first_work) * scale);
+    auto first_budget = [&] { return std::min(first_work, work); };
     for (std::size_t i = 0; i < ranked.size() && !done && st.fold_checks < checks && work > 0; ++i) {
       if (ranked[i].metrics.overlapping_pairs != 0) break;
       if (have && !within_slack(ranked[i].metrics)) continue;

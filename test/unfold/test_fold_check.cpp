@@ -320,6 +320,13 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_every_squirtle_dc_shell_net) {
   expect_every_dc_shell_net_verified("Squirtle", 7);
 }
 
+BOOST_AUTO_TEST_CASE(fold_selection_budget_grows_with_the_shell) {
+  // Pikachu's shells 0 (1,290 faces) and 2 (318): the selection's budgets count pieces placed,
+  // so at a fixed budget a large net got few steps per check and none of their nets verified;
+  // scaled with the faces (up to 3x) every shell's returned net verifies.
+  expect_every_dc_shell_net_verified("Pikachu", 7);
+}
+
 // The folding check's broad phase (src/unfold/box_sweep.h) reports exactly the pairs of closed
 // boxes CGAL's box_self_intersection_d reports, sorted, also when boxes only touch (equal
 // coordinates on a grid), share low x, and move past each other between calls (the sweep keeps
