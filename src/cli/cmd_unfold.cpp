@@ -167,7 +167,7 @@ int run_unfold(int argc, char** argv) {
         "fold-slack", po::value(&fold_slack)->default_value(UnfoldOptions{}.fold_slack),
         "check the folding of nets up to this fraction worse (objective) than the best; 0: the best only")(
         "fold-work", po::value(&fold_work)->default_value(UnfoldOptions{}.fold_work),
-        "work budget of the folding checks per shell of up to 200 faces, scaled with the faces up to 3x (pieces placed; a count, not a time)");
+        "work budget of the folding checks per 200 faces of a shell, at most 3x this per shell (pieces placed; a count, not a time)");
     std::vector<std::string> inputs;
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
@@ -236,7 +236,8 @@ int run_unfold(int argc, char** argv) {
       // A net the unfolder did not check (over 5,000 faces, or no candidate checked) gets one
       // check within the same work budget: undecided past it, never minutes.
       FoldCheckOptions fo;
-      fo.max_work = std::max<long long>(uo.fold_work, 1);
+      fo.max_work = std::max<long long>(
+          static_cast<long long>(static_cast<double>(uo.fold_work) * fold_work_scale(meshes[k].number_of_faces())), 1);
       // Nets above FoldCheckOptions::max_pieces come back undecided without a check.
       s.fold = s.stats.fold_checks > 0 ? s.stats.fold : check_folding(s.net, fo);
       s.seconds = seconds_since(ts);

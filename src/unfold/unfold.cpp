@@ -391,7 +391,7 @@ Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std
 // default spends about 100 units per heuristic: a few trees for a small shell, one per heuristic
 // from 100 faces on (the retries continue until a net is overlap-free). That keeps the default
 // at about a millisecond per shell of a composite model; --tries or the GA search further.
-// Greedy variants `best` tries with the cut-length objective (greedy_weights).
+// Greedy variants `best` tries (greedy_weights).
 constexpr int kGreedyVariants = 4;
 // Up to this size (search-graph faces) every greedy variant is tried for the hull-area objective
 // too: a few milliseconds each there (ball_large, 19,800 faces: ~70 ms each, for no gain).
@@ -425,7 +425,7 @@ SearchResult search_heuristics(const ShellGraph& g, const SearchGraph& sg, const
   std::unordered_set<std::uint64_t> seen;
   double best_score = std::numeric_limits<double>::infinity();
   for (int attempt = 0; attempt < std::max(max_tries, mst_tries); ++attempt) {
-    bool more = attempt < max_tries && !(attempt >= tries && r.best >= 0 && r.evaluated[r.best].metrics.overlapping_pairs == 0);
+    bool more = attempt < max_tries && !(attempt >= tries && r.has_overlap_free());
     bool more_mst = cut_first && !mst_free && attempt < mst_tries;
     if (!more && !more_mst) break;
     for (auto h : hs) {
@@ -449,12 +449,11 @@ SearchResult search_heuristics(const ShellGraph& g, const SearchGraph& sg, const
   // than the other heuristics' best, on average), and where the normal budget found no
   // overlap-free tree they usually are one, before the caller raises the flat angle or
   // retries at length. Above kGreedyAllFaces only the first variant, unless nothing is free.
-  const bool none_free = std::none_of(r.evaluated.begin(), r.evaluated.end(),
-                                      [](const Candidate& c) { return c.metrics.overlapping_pairs == 0; });
-  const int greedy_variants = cut_first ? kGreedyVariants
-                              : !all || extended ? 0
-                              : none_free || sg.faces() <= kGreedyAllFaces ? kGreedyVariants
-                                                                           : 1;
+  int greedy_variants = 0;
+  if (cut_first || (all && !extended && (!r.has_overlap_free() || sg.faces() <= kGreedyAllFaces)))
+    greedy_variants = kGreedyVariants;
+  else if (all && !extended)
+    greedy_variants = 1;
   for (int v = 0; v < greedy_variants && !r.evaluated.empty(); ++v) {
     Genome w = greedy_weights(g, sg, v, options.seed);
     if (w.empty()) break;
@@ -512,15 +511,10 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
   // First the normal budget at each flat angle in turn, then the extended retries at each.
   std::vector<double> flats = {options.flat_angle};
   while (flats.back() > 0 && flats.back() * 10 <= 0.01 * (1 + 1e-9)) flats.push_back(flats.back() * 10);
-  auto any_free = [](const SearchResult& r) {
-    for (const auto& c : r.evaluated)
-      if (c.metrics.overlapping_pairs == 0) return true;
-    return false;
-  };
   double flat = options.flat_angle;
   SearchGraph sg = make_search_graph(g, flat);
   SearchResult search = search_heuristics(g, sg, options, false);
-  for (std::size_t round = 0, i = 1; !any_free(search) && round < 2; ++i) {
+  for (std::size_t round = 0, i = 1; !search.has_overlap_free() && round < 2; ++i) {
     if (i == flats.size()) i = 0, ++round;
     if (round == 2) break;
     if (flats[i] != flat) {
@@ -545,7 +539,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     if (ga_history) *ga_history = run.best_score_per_generation;
     ranked.push_back(run.best);
   } else if (options.heuristic == UnfoldHeuristic::best && options.objective == UnfoldObjective::cut_length &&
-             search.best >= 0 && search.evaluated[search.best].metrics.overlapping_pairs == 0) {
+             search.has_overlap_free()) {
     // The minimum-length cut tree is among the first trees tried (min-perimeter, attempt 0);
     // when it overlaps, edge exchanges from the best net (run_ga with population 0: local
     // search only, a few evaluations) get as close to it as overlaps allow.
@@ -576,9 +570,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
   Net net;
   bool have = false;
   if (checks > 0) {
-    // The budgets count pieces placed, so a large net would get few steps per check: scaled
-    // with the shell's faces (up to 3x: past that, mostly time spent on nets that never verify).
-    const double scale = std::clamp(static_cast<double>(g.F.size()) / 200.0, 1.0, 3.0);
+    const double scale = fold_work_scale(g.F.size());
     long long work = static_cast<long long>(static_cast<double>(options.fold_work) * scale);
     std::unordered_set<std::uint64_t> seen;
     for (const auto& c : search.evaluated) seen.insert(tree_hash(folded_groups(g, c.genome)));
@@ -668,6 +660,8 @@ Net unfold_ga(const Mesh& mesh, const UnfoldOptions& options, const GaOptions& g
   o.heuristic = UnfoldHeuristic::ga;
   return unfold_impl(mesh, o, &ga, stats, history);
 }
+
+double fold_work_scale(std::size_t faces) { return std::clamp(static_cast<double>(faces) / 200.0, 1.0, 3.0); }
 
 NetMetrics net_metrics(const Net& net) {
   NetMetrics m;

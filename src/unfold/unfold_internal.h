@@ -141,6 +141,8 @@ struct Candidate {
 struct SearchResult {
   std::vector<Candidate> evaluated;
   int best = -1;  ///< index of the best by the objective (overlap-free first), -1 if none tried
+  /// Some tree tried is overlap-free (then the best one is: the score ranks them first).
+  bool has_overlap_free() const { return best >= 0 && evaluated[best].metrics.overlapping_pairs == 0; }
 };
 /// `extended`: keep retrying (up to 8x the tries) while no net is overlap-free.
 SearchResult search_heuristics(const ShellGraph& g, const SearchGraph& sg, const UnfoldOptions& options, bool extended);
