@@ -29,6 +29,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <sstream>
 
 #include "bench_util.h"
@@ -49,37 +50,67 @@ using namespace dcshell;
 namespace {
 
 // Where a set of shells' area is: on a cut face (all corners within 1e-7 of the shell's size of
-// one of its cut planes) or not, and in which fatness band.
+// one of its cut planes), in the band a cut leaves along its boundary (some corners on a cut
+// plane), or elsewhere on the hull; by fatness band, and its thin triangles (fatness < 0.2) by
+// shape: needles (shortest / longest edge < 0.25), caps (an angle above 2.2 rad), others.
 struct Breakdown {
-  double cut_a = 0, cut_fa = 0, other_a = 0, other_fa = 0;
-  double band[5] = {0, 0, 0, 0, 0};  // area with fatness in [0, .1), [.1, .2), ... [.4, .5]
-  std::size_t cut_faces = 0, faces = 0;
+  enum Where { cut, band, hull };
+  enum Shape { fat, needle, cap, thin };
+  struct Class {
+    double a = 0, fa = 0;
+    std::size_t n = 0;
+  };
+  Class cls[3][4];
+  double fat_band[5] = {0, 0, 0, 0, 0};  // area with fatness in [0, .1), [.1, .2), ... [.4, .5]
   void add(const Mesh& m, const std::vector<CutPlane>& cuts) {
     const auto box = CGAL::bbox_3(m.points().begin(), m.points().end());
     const double size = std::max({box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin()});
     for (auto f : m.faces()) {
       auto h = m.halfedge(f);
-      const Point3 &a = m.point(m.source(h)), &b = m.point(m.target(h)), &c = m.point(m.target(m.next(h)));
-      bool on = false;
+      const Point3* P[3] = {&m.point(m.source(h)), &m.point(m.target(h)), &m.point(m.target(m.next(h)))};
+      bool on_one = false, touches = false;
       for (const CutPlane& p : cuts) {
-        bool all = true;
-        for (const Point3* q : {&a, &b, &c}) all = all && std::abs(p.eval({q->x(), q->y(), q->z()})) <= 1e-7 * size;
-        on = on || all;
+        int n = 0;
+        for (const Point3* q : P) n += std::abs(p.eval({q->x(), q->y(), q->z()})) <= 1e-7 * size;
+        on_one = on_one || n == 3;
+        touches = touches || n > 0;
       }
-      const double A = std::sqrt(CGAL::to_double(CGAL::squared_area(a, b, c))), fat = triangle_fatness(a, b, c);
-      (on ? cut_a : other_a) += A;
-      (on ? cut_fa : other_fa) += A * fat;
-      cut_faces += on;
-      ++faces;
-      band[std::min(4, int(fat * 10))] += A;
+      const double A = std::sqrt(CGAL::to_double(CGAL::squared_area(*P[0], *P[1], *P[2])));
+      const double f_ = triangle_fatness(*P[0], *P[1], *P[2]);
+      auto vec = [](const Point3* p) { return Eigen::Vector3d(p->x(), p->y(), p->z()); };
+      double shortest = std::numeric_limits<double>::infinity(), longest = 0, widest = 0;
+      for (int k = 0; k < 3; ++k) {
+        const Eigen::Vector3d a = vec(P[k]), u = vec(P[(k + 1) % 3]) - a, w = vec(P[(k + 2) % 3]) - a;
+        shortest = std::min(shortest, u.norm()), longest = std::max(longest, u.norm());
+        widest = std::max(widest, std::atan2(u.cross(w).norm(), u.dot(w)));
+      }
+      const Shape shape = f_ >= 0.2 ? fat : shortest < 0.25 * longest ? needle : widest > 2.2 ? cap : thin;
+      Class& c = cls[on_one ? cut : touches ? band : hull][shape];
+      c.a += A, c.fa += A * f_, ++c.n;
+      fat_band[std::min(4, int(f_ * 10))] += A;
     }
   }
   void print(const std::string& name, const char* what) const {
-    const double t = cut_a + other_a;
+    double t = 0, where_a[3] = {0, 0, 0}, where_fa[3] = {0, 0, 0};
+    std::size_t where_n[3] = {0, 0, 0}, faces = 0;
+    for (int w = 0; w < 3; ++w)
+      for (const Class& c : cls[w]) t += c.a, where_a[w] += c.a, where_fa[w] += c.fa, where_n[w] += c.n, faces += c.n;
     std::fprintf(stderr, "%s %s: cut faces %.0f%% of area (%zu of %zu faces) at %.4f, rest at %.4f; area by fatness band:",
-                 name.c_str(), what, 100 * cut_a / t, cut_faces, faces, cut_a > 0 ? cut_fa / cut_a : 0, other_a > 0 ? other_fa / other_a : 0);
-    for (double b : band) std::fprintf(stderr, " %.0f%%", 100 * b / t);
+                 name.c_str(), what, 100 * where_a[cut] / t, where_n[cut], faces,
+                 where_a[cut] > 0 ? where_fa[cut] / where_a[cut] : 0,
+                 t > where_a[cut] ? (where_fa[band] + where_fa[hull]) / (t - where_a[cut]) : 0);
+    for (double b : fat_band) std::fprintf(stderr, " %.0f%%", 100 * b / t);
     std::fprintf(stderr, "\n");
+    // Per class: share of the area, fatness, count, and what the whole set would gain in
+    // fatness if that class were equilateral (0.5).
+    const char* wn[3] = {"cut", "band", "hull"};
+    const char* sn[4] = {"fat", "needle", "cap", "thin other"};
+    for (int w = 0; w < 3; ++w)
+      for (int k = 0; k < 4; ++k)
+        if (cls[w][k].n > 0)
+          std::fprintf(stderr, "%s %s:   %-4s %-10s %5.1f%% of area at %.3f, %zu faces, deficit %.4f\n", name.c_str(), what,
+                       wn[w], sn[k], 100 * cls[w][k].a / t, cls[w][k].fa / cls[w][k].a, cls[w][k].n,
+                       (0.5 * cls[w][k].a - cls[w][k].fa) / t);
   }
 };
 
