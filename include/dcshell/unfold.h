@@ -54,7 +54,7 @@ struct UnfoldOptions {
   /// every rigid piece) or one face of a tree decoded. Each net is first checked with a small
   /// share (`fold_first_work`); a net that runs out of it undecided is re-checked with the rest
   /// only if no net verifies. A count, not a time: the result is the same on every machine.
-  /// Both are per 200 faces of the shell, scaled by fold_work_scale: a step of a larger net
+  /// Both are per 200 faces of the shell, scaled by scaled_fold_work: a step of a larger net
   /// places more pieces, and its nets need about as many steps.
   long long fold_work = 500000;
   long long fold_first_work = 40000;
@@ -96,10 +96,11 @@ struct UnfoldStats {
 /// than 4 faces, or has a degenerate (zero-area) face.
 Net unfold_convex_mesh(const Mesh& mesh, const UnfoldOptions& options = {}, UnfoldStats* stats = nullptr);
 
-/// How much of UnfoldOptions::fold_work (and fold_first_work) a shell of `faces` faces gets:
-/// faces / 200, between 1 and 3 (Pikachu's 1,290-face shell verifies within 3x, not within 2x;
-/// above it the budget mostly goes to nets that never verify).
-double fold_work_scale(std::size_t faces);
+/// The share of a folding-check budget (UnfoldOptions::fold_work, fold_first_work) a shell of
+/// `faces` faces gets: work x faces / 200, between 1x and 3x (Pikachu's 1,290-face shell
+/// verifies within 3x, not within 2x; above it the budget mostly goes to nets that never
+/// verify), saturating instead of overflowing.
+long long scaled_fold_work(long long work, std::size_t faces);
 
 /// Cut length, hull area and overlap count of a net.
 NetMetrics net_metrics(const Net& net);

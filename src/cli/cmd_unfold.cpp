@@ -236,8 +236,7 @@ int run_unfold(int argc, char** argv) {
       // A net the unfolder did not check (over 5,000 faces, or no candidate checked) gets one
       // check within the same work budget: undecided past it, never minutes.
       FoldCheckOptions fo;
-      fo.max_work = std::max<long long>(
-          static_cast<long long>(static_cast<double>(uo.fold_work) * fold_work_scale(meshes[k].number_of_faces())), 1);
+      fo.max_work = std::max<long long>(scaled_fold_work(uo.fold_work, meshes[k].number_of_faces()), 1);
       // Nets above FoldCheckOptions::max_pieces come back undecided without a check.
       s.fold = s.stats.fold_checks > 0 ? s.stats.fold : check_folding(s.net, fo);
       s.seconds = seconds_since(ts);

@@ -570,8 +570,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
   Net net;
   bool have = false;
   if (checks > 0) {
-    const double scale = fold_work_scale(g.F.size());
-    long long work = static_cast<long long>(static_cast<double>(options.fold_work) * scale);
+    long long work = scaled_fold_work(options.fold_work, g.F.size());
     std::unordered_set<std::uint64_t> seen;
     for (const auto& c : search.evaluated) seen.insert(tree_hash(folded_groups(g, c.genome)));
     struct Deferred {
@@ -606,7 +605,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
       return fc.verified;
     };
     bool done = false;
-    const long long first_work = static_cast<long long>(static_cast<double>(options.fold_first_work) * scale);
+    const long long first_work = scaled_fold_work(options.fold_first_work, g.F.size());
     auto first_budget = [&] { return std::min(first_work, work); };
     for (std::size_t i = 0; i < ranked.size() && !done && st.fold_checks < checks && work > 0; ++i) {
       if (ranked[i].metrics.overlapping_pairs != 0) break;
@@ -661,7 +660,11 @@ Net unfold_ga(const Mesh& mesh, const UnfoldOptions& options, const GaOptions& g
   return unfold_impl(mesh, o, &ga, stats, history);
 }
 
-double fold_work_scale(std::size_t faces) { return std::clamp(static_cast<double>(faces) / 200.0, 1.0, 3.0); }
+long long scaled_fold_work(long long work, std::size_t faces) {
+  const double scaled = static_cast<double>(work) * std::clamp(static_cast<double>(faces) / 200.0, 1.0, 3.0);
+  constexpr double cap = 0x1p62;  // below LLONG_MAX, exactly representable
+  return scaled >= cap ? static_cast<long long>(cap) : static_cast<long long>(scaled);
+}
 
 NetMetrics net_metrics(const Net& net) {
   NetMetrics m;

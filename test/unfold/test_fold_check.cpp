@@ -3,6 +3,8 @@
 // free paths of the Platonic solids are verified; a crossing found by the check is real.
 #include <boost/test/unit_test.hpp>
 
+#include <limits>
+
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
 #include <CGAL/box_intersection_d.h>
@@ -325,6 +327,15 @@ BOOST_AUTO_TEST_CASE(fold_selection_budget_grows_with_the_shell) {
   // so at a fixed budget a large net got few steps per check and none of their nets verified;
   // scaled with the faces (up to 3x) every shell's returned net verifies.
   expect_every_dc_shell_net_verified("Pikachu", 7);
+}
+
+BOOST_AUTO_TEST_CASE(fold_budget_scales_with_faces_and_saturates) {
+  BOOST_TEST(scaled_fold_work(500000, 4) == 500000);     // at least the budget
+  BOOST_TEST(scaled_fold_work(500000, 300) == 750000);   // per 200 faces
+  BOOST_TEST(scaled_fold_work(500000, 5000) == 1500000); // at most 3x
+  const long long huge = std::numeric_limits<long long>::max();
+  BOOST_TEST(scaled_fold_work(huge, 1000) > 0);           // saturates, never overflows
+  BOOST_TEST(scaled_fold_work(huge, 1000) <= huge);
 }
 
 // The folding check's broad phase (src/unfold/box_sweep.h) reports exactly the pairs of closed
