@@ -24,6 +24,7 @@
 #pragma once
 #include <Eigen/Core>
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -63,6 +64,18 @@ struct FoldCheckResult {
 };
 
 FoldCheckResult check_folding(const Net& net, const FoldCheckOptions& options = {});
+
+/// Rigid pieces of the net's motion: faces joined by folds flatter than the check's rigid angle
+/// (1e-4 rad) move as one (FoldCheckResult::pieces, without running the check).
+int rigid_pieces(const Net& net);
+
+/// Refutation only, much cheaper than check_folding on a net that collides: the states
+/// t = 1 - (k / samples)^2 (k = 1 .. samples - 1, densest near the folded end) of the same motion, and the first of them in which
+/// an edge of one face passes through the interior of another face of a different rigid piece,
+/// clear of its plane and its sides by more than `margin` x net size (a sure collision: rounding
+/// is far below that). Returns that state as a not-verified result (steps = states sampled);
+/// nothing when no sampled state collides, which proves nothing about the states in between.
+std::optional<FoldCheckResult> find_sampled_collision(const Net& net, int samples = 32, double margin = 1e-7);
 
 /// Net faces moved to folding state t (0 = flat net at z = 0, 1 = folded shell, in net
 /// coordinates): corners of each face, in shell order.

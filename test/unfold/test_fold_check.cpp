@@ -137,6 +137,97 @@ BOOST_AUTO_TEST_CASE(fold_check_catches_a_collision_that_exists_only_mid_way) {
   BOOST_TEST(flaps_distance(net, r.t) < 1e-6);
 }
 
+BOOST_AUTO_TEST_CASE(sampled_collision_finds_crossing_flaps_and_never_a_free_fold) {
+  // Crossed from mid-way to the end: the first sampled state (t close to 1) refutes it, after
+  // the check's first contact, and the two flaps really intersect there (CGAL, independently).
+  // (The flaps are not mirror images: two mirrored flaps cross edge against edge, where no edge
+  // passes through a face's interior, and only interiors are sampled.)
+  Net bad = flap_net(-170 * deg, -170 * deg, {-0.8, 0.5}, {1.9, 0.4});
+  auto hit = find_sampled_collision(bad);
+  BOOST_TEST_REQUIRE(hit.has_value());
+  BOOST_TEST(!hit->verified);
+  BOOST_TEST(((hit->face_a == 2 && hit->face_b == 3)), hit->message);
+  BOOST_TEST(hit->t >= check_folding(bad).t);
+  BOOST_TEST(hit->t < 1.0);
+  BOOST_TEST(flaps_intersect(bad, hit->t));
+  // Crossed only mid-way (about t = 0.79 to 0.97): found by the states densest near the end.
+  Net transient = flap_net(-160 * deg, -178 * deg, {-0.9, 0.5}, {1.8, 0.5});
+  auto mid = find_sampled_collision(transient, 16);
+  BOOST_TEST_REQUIRE(mid.has_value());
+  BOOST_TEST(mid->t > 0.5);
+  BOOST_TEST(mid->t < 0.99);
+  BOOST_TEST(flaps_intersect(transient, mid->t));
+  // Free folds: nothing is found, whatever the number of states.
+  for (int samples : {2, 16, 200}) {
+    BOOST_TEST(!find_sampled_collision(flap_net(-80 * deg, -80 * deg, {-0.8, 0.5}, {1.8, 0.5}), samples));
+    for (const Mesh& m : {tetrahedron(), octahedron(), dodecahedron(), icosahedron()})
+      BOOST_TEST(!find_sampled_collision(unfold_convex_mesh(m), samples));
+  }
+}
+
+BOOST_AUTO_TEST_CASE(sampled_collision_agrees_with_the_check_on_random_nets) {
+  // Random cut trees of ellipsoid hulls: wherever a sampled state collides, the check does not
+  // verify the net and stops at or before that state, and the two faces reported really cross
+  // there: CGAL's intersection of the two triangles is a segment (or more), not a corner they
+  // share. Both outcomes occur, so the agreement is tested on both sides.
+  int hits = 0, free_verified = 0;
+  for (std::uint64_t seed : {1, 2, 3}) {
+    Mesh m = ellipsoid_hull(60, seed, 0.6, 0.35);
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      BOOST_TEST_CONTEXT("ellipsoid " << seed << ", random net " << attempt) {
+        UnfoldOptions o;
+        o.heuristic = UnfoldHeuristic::random;
+        o.fold_candidates = 0;
+        o.seed = 100 * seed + attempt;
+        Net net = unfold_convex_mesh(m, o);
+        const auto hit = find_sampled_collision(net);
+        const auto full = check_folding(net);
+        if (!hit) {
+          free_verified += full.verified;
+          continue;
+        }
+        ++hits;
+        BOOST_TEST(!full.verified);
+        BOOST_TEST(full.t <= hit->t, full.message << " / " << hit->message);
+        auto F = folded_faces(net, hit->t);
+        auto tri = [&](int f) {
+          auto p = [&](int k) { return K::Point_3(F[f][k].x(), F[f][k].y(), F[f][k].z()); };
+          return K::Triangle_3(p(0), p(1), p(2));
+        };
+        const auto x = CGAL::intersection(tri(hit->face_a), tri(hit->face_b));
+        const K::Segment_3* seg = x ? boost::get<K::Segment_3>(&*x) : nullptr;
+        BOOST_TEST((seg ? seg->squared_length() > 0 : x && !boost::get<K::Point_3>(&*x)), hit->message);
+      }
+    }
+  }
+  BOOST_TEST(hits > 0);
+  BOOST_TEST(free_verified > 0);
+}
+
+BOOST_AUTO_TEST_CASE(unfolder_reports_the_first_contact_of_a_net_refuted_by_sampling) {
+  // The fold selection skips nets that a sampled state refutes; when the one it returns is such
+  // a net (here: the only candidate allowed), its report is still the check's first contact,
+  // not the sampled state. Fails when the selection reports the sampled state.
+  Mesh m = ellipsoid_hull(60, 1, 0.6, 0.35);
+  UnfoldOptions o;
+  o.heuristic = UnfoldHeuristic::random;
+  o.fold_candidates = 1;
+  int tested = 0;
+  for (std::uint64_t seed = 100; seed < 116 && tested == 0; ++seed) {
+    o.seed = seed;
+    UnfoldStats st;
+    const Net net = unfold_convex_mesh(m, o, &st);
+    if (!find_sampled_collision(net)) continue;
+    ++tested;
+    BOOST_TEST(st.fold_checks == 1);
+    const auto full = check_folding(net);
+    BOOST_TEST(!st.fold.verified);
+    BOOST_TEST(st.fold.t == full.t);
+    BOOST_TEST(st.fold.message == full.message);
+  }
+  BOOST_TEST(tested == 1);
+}
+
 BOOST_AUTO_TEST_CASE(fold_check_verifies_platonic_nets_and_counts_pieces) {
   // The unfolder checks its best nets in turn and returns the first verified one: every Platonic
   // solid gets one. The cube's 12 triangles fold as 6 rigid pieces.
@@ -150,8 +241,11 @@ BOOST_AUTO_TEST_CASE(fold_check_verifies_platonic_nets_and_counts_pieces) {
   }
   UnfoldOptions o;
   o.fold_candidates = 0;
-  auto r = check_folding(unfold_convex_mesh(cube_triangles(), o));
+  const Net cube = unfold_convex_mesh(cube_triangles(), o);
+  auto r = check_folding(cube);
   BOOST_TEST(r.pieces == 6);
+  BOOST_TEST(rigid_pieces(cube) == 6);
+  BOOST_TEST(rigid_pieces(unfold_convex_mesh(subdivided_cube(4), o)) == check_folding(unfold_convex_mesh(subdivided_cube(4), o)).pieces);
   // Deterministic: the same net gives the same answer and step count.
   Net ico = unfold_convex_mesh(icosahedron(), o);
   auto a = check_folding(ico), b = check_folding(ico);

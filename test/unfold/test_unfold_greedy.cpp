@@ -18,17 +18,6 @@ using namespace dcshell::unfold_detail;
 
 namespace {
 
-// Convex hull of n seeded random points on an ellipsoid with axes 1, ay, az.
-Mesh ellipsoid_hull(int n, std::uint64_t seed, double ay, double az) {
-  Rng rng(seed);
-  std::vector<Point3> pts;
-  for (int i = 0; i < n; ++i) {
-    Eigen::Vector3d d = rng.direction();
-    pts.emplace_back(d.x(), ay * d.y(), az * d.z());
-  }
-  return convex_hull_mesh(pts);
-}
-
 int folded_count(const std::vector<char>& f) {
   int n = 0;
   for (char c : f) n += c;

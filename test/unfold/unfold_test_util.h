@@ -9,7 +9,9 @@
 #include <string>
 #include <vector>
 
+#include "dcshell/convex_hull.h"
 #include "dcshell/kernel.h"
+#include "unfold/unfold_internal.h"
 
 namespace dcshell::test {
 
@@ -110,6 +112,17 @@ inline Mesh fine_pyramid(int n, double h) {
     tris.push_back({a, b, 0}), tris.push_back({b, a, 1});
   }
   return make_mesh(v, tris);
+}
+
+/// Convex hull of n seeded random points on an ellipsoid with axes 1, ay, az.
+inline Mesh ellipsoid_hull(int n, std::uint64_t seed, double ay, double az) {
+  unfold_detail::Rng rng(seed);
+  std::vector<Point3> pts;
+  for (int i = 0; i < n; ++i) {
+    Eigen::Vector3d d = rng.direction();
+    pts.emplace_back(d.x(), ay * d.y(), az * d.z());
+  }
+  return convex_hull_mesh(pts);
 }
 
 inline std::string shared_data() { return DCSHELL_SHARED_DATA; }
