@@ -97,6 +97,12 @@ def main():
     write(os.path.join(d, "left.obj"), [box((0, 0, 0), (0.5, 1, 1))])
     write(os.path.join(d, "right_front.obj"), [box((0.5, 0, 0), (1, 0.5, 1))])
     write(os.path.join(d, "right_back.obj"), [box((0.5, 0.5, 0), (1, 1, 1))])
+    # A star of eight thin planks crossing through one vertical axis, each a little higher: every
+    # pair overlaps, and each hull loses most of its volume to the other planes.
+    plank = box((-4, -0.3, -0.05), (4, 0.3, 0.05))
+    for k in range(8):
+        write(os.path.join(ROOT, "plank_star", "plank_%d.obj" % k),
+              [transform(plank, 22.5 * k, (0, 0, 0.01 * k))])
     # A snowman of three overlapping spheres in one file: its connected components are the parts.
     write(os.path.join(ROOT, "snowman.obj"),
           [sphere((0, 0, 0), 1.0), sphere((0, 0, 1.45), 0.7), sphere((0, 0, 2.4), 0.45)])

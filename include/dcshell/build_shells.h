@@ -23,6 +23,10 @@ struct ShellOptions {
   /// Sweeps re-fit a pair from scratch (true) or, for `full`, from its current plane with a
   /// short scan (false, the default: several times faster; see doc/results.md for the losses).
   bool global_sweeps = false;
+  /// With warm-started sweeps, where the other planes cut 30% or more off a pair's hulls, `full`
+  /// also runs a second start that re-fits those pairs from scratch in its first sweep, and keeps
+  /// whichever start leaves the shells more volume (doc/shell.md, "Two starts").
+  bool second_start = true;
   /// Sweeps stop once one gains less than this fraction of the hulls' total volume (each sweep
   /// gains less than the one before, typically by a factor of 2 to 10).
   double sweep_tolerance = 2e-6;
@@ -76,6 +80,8 @@ struct ShellResult {
   int sweeps_run = 0;
   /// Objective decrease of each sweep, as a fraction of the hulls' total volume.
   std::vector<double> sweep_gains;
+  /// Pairs the winning second start re-fitted from scratch (0 when the first start won or none ran).
+  std::size_t sweep_refits = 0;
   double union_volume = 0.0;           ///< of the parts' original convex hulls (certified enclosure midpoint)
   double shells_volume = 0.0;
   double volume_loss = 0.0;            ///< (union - shells) / union, correctly signed (volume_loss.h)

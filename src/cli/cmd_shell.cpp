@@ -108,6 +108,7 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
   json.field("overlapping_pairs", r.overlapping_pairs)
       .field("sweeps", r.sweeps_run)
       .field("sweep_gains", r.sweep_gains)
+      .field("sweep_refits", r.sweep_refits)
       .field("union_volume", r.union_volume)
       .field("shells_volume", r.shells_volume)
       .field("volume_loss", r.volume_loss)

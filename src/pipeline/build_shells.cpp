@@ -171,44 +171,97 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   if (volume_driven) {
     double scale = 0;
     for (std::size_t i = 0; i < n; ++i) scale += active[i] ? vol[i] : 0;
-    auto trimmed_except = [&](std::size_t part, std::size_t skip) {
+    auto oriented = [&](const std::vector<CutPlane>& planes, std::size_t q, std::size_t part) {
+      return pairs[q].i == part ? planes[q] : planes[q].flipped();
+    };
+    auto trimmed_except = [&](const std::vector<CutPlane>& planes, std::size_t part, std::size_t skip) {
       ConvexPolytope c = hull_d[part];
       for (std::size_t q : pairs_of[part])
-        if (q != skip && !c.empty()) c = clip(c, oriented_for(pairs[q], part), -2);
+        if (q != skip && !c.empty()) c = clip(c, oriented(planes, q, part), -2);
       return c;
     };
-    // A pair's refit depends only on the planes of its two parts: skip it while none of them
-    // changed since its last fit (the fit is deterministic, so the answer would be the same).
-    std::vector<std::size_t> version(n, 0);
-    std::vector<std::pair<std::size_t, std::size_t>> fitted_at(pairs.size(), {~std::size_t(0), ~std::size_t(0)});
-    for (int s = 0; s < opt.max_sweeps; ++s) {
-      double gain = 0;
-      for (std::size_t p = 0; p < pairs.size(); ++p) {
-        progress("sweep " + std::to_string(s + 1), p, pairs.size());
-        if (pairs_of[pairs[p].i].size() + pairs_of[pairs[p].j].size() <= 2) continue;  // nothing else trims them
-        const std::pair<std::size_t, std::size_t> now{version[pairs[p].i], version[pairs[p].j]};
-        if (fitted_at[p] == now) continue;
-        fitted_at[p] = now;
-        ConvexPolytope a = trimmed_except(pairs[p].i, p), b = trimmed_except(pairs[p].j, p);
-        if (a.empty() || b.empty()) continue;
-        CutProblem prob = make_problem(p, std::move(a), std::move(b));
-        prob.current_overlap = tagged_intersection(prob.a, prob.b);  // once for both calls
-        CutResult cur = evaluate_cut_plane(prob, pairs[p].plane, opt.cut.lambda);
-        CutOptions o = pair_options(p);
-        if (!opt.global_sweeps) o.warm_start = pairs[p].plane;
-        CutResult cand = fit_cut_plane(prob, o);
-        if (cand.objective < cur.objective - 1e-12 * scale) {
-          gain += cur.objective - cand.objective;
-          pairs[p].plane = cand.plane;
-          ++version[pairs[p].i];
-          ++version[pairs[p].j];
-          fitted_at[p] = {version[pairs[p].i], version[pairs[p].j]};
+    struct SweepRun {
+      std::vector<CutPlane> planes;
+      int sweeps = 0;
+      std::vector<double> gains;
+      std::size_t refits = 0;  // pairs re-fitted from scratch
+    };
+    // A hull that the other planes have cut by more than this fraction no longer resembles the
+    // one its pairwise plane was fitted to; polishing that plane can stay in the wrong basin.
+    constexpr double kReshaped = 0.3;
+    auto run_sweeps = [&](std::vector<CutPlane> planes, bool refit_reshaped) {
+      SweepRun run;
+      // A pair's refit depends only on the planes of its two parts: skip it while none of them
+      // changed since its last fit (the fit is deterministic, so the answer would be the same).
+      std::vector<std::size_t> version(n, 0);
+      std::vector<std::pair<std::size_t, std::size_t>> fitted_at(pairs.size(),
+                                                                   {~std::size_t(0), ~std::size_t(0)});
+      for (int s = 0; s < opt.max_sweeps; ++s) {
+        double gain = 0;
+        for (std::size_t p = 0; p < pairs.size(); ++p) {
+          if (!refit_reshaped) progress("sweep " + std::to_string(s + 1), p, pairs.size());
+          const std::size_t i = pairs[p].i, j = pairs[p].j;
+          if (pairs_of[i].size() + pairs_of[j].size() <= 2) continue;  // nothing else trims them
+          const std::pair<std::size_t, std::size_t> now{version[i], version[j]};
+          if (fitted_at[p] == now) continue;
+          fitted_at[p] = now;
+          ConvexPolytope a = trimmed_except(planes, i, p), b = trimmed_except(planes, j, p);
+          if (a.empty() || b.empty()) continue;
+          const bool reshaped = s == 0 && (volume(a) < (1 - kReshaped) * vol[i] ||
+                                           volume(b) < (1 - kReshaped) * vol[j]);
+          CutProblem prob = make_problem(p, std::move(a), std::move(b));
+          prob.current_overlap = tagged_intersection(prob.a, prob.b);  // once for both calls
+          CutResult cur = evaluate_cut_plane(prob, planes[p], opt.cut.lambda);
+          CutOptions o = pair_options(p);
+          const bool from_scratch = opt.global_sweeps || (refit_reshaped && reshaped);
+          if (!from_scratch) o.warm_start = planes[p];
+          run.refits += refit_reshaped && reshaped;
+          CutResult cand = fit_cut_plane(prob, o);
+          if (cand.objective < cur.objective - 1e-12 * scale) {
+            gain += cur.objective - cand.objective;
+            planes[p] = cand.plane;
+            ++version[i];
+            ++version[j];
+            fitted_at[p] = {version[i], version[j]};
+          }
         }
+        run.sweeps = s + 1;
+        run.gains.push_back(scale > 0 ? gain / scale : 0.0);
+        if (gain <= opt.sweep_tolerance * scale) break;
       }
-      res.sweeps_run = s + 1;
-      res.sweep_gains.push_back(scale > 0 ? gain / scale : 0.0);
-      if (gain <= opt.sweep_tolerance * scale) break;
+      run.planes = std::move(planes);
+      return run;
+    };
+    // What the shells keep: each hull clipped by all its planes.
+    auto kept_volume = [&](const std::vector<CutPlane>& planes) {
+      double v = 0;
+      for (std::size_t i = 0; i < n; ++i)
+        if (active[i]) v += volume(trimmed_except(planes, i, pairs.size()));
+      return v;
+    };
+    std::vector<CutPlane> initial(pairs.size());
+    for (std::size_t p = 0; p < pairs.size(); ++p) initial[p] = pairs[p].plane;
+    // Warm-started polishing keeps each plane near its pairwise fit. Where the other planes
+    // reshape a pair's hulls, a second start re-fits those pairs from scratch in its first
+    // sweep; the start that keeps more volume wins (doc/shell.md, "Two starts"). The starts are
+    // independent, so they run side by side.
+    bool two_starts = false;
+    if (opt.second_start && opt.cut.method == CutMethod::full && !opt.global_sweeps)
+      for (std::size_t p = 0; p < pairs.size() && !two_starts; ++p)
+        for (std::size_t part : {pairs[p].i, pairs[p].j})
+          if (pairs_of[part].size() > 1 && volume(trimmed_except(initial, part, p)) < (1 - kReshaped) * vol[part])
+            two_starts = true;
+    std::vector<SweepRun> runs(two_starts ? 2 : 1);
+    parallel_for(runs.size(), [&](std::size_t k) { runs[k] = run_sweeps(initial, k == 1); });
+    std::size_t win = 0;
+    if (runs.size() == 2 && runs[1].refits > 0 && kept_volume(runs[1].planes) > kept_volume(runs[0].planes)) {
+      win = 1;
+      res.sweep_refits = runs[1].refits;
     }
+    SweepRun& best = runs[win];
+    for (std::size_t p = 0; p < pairs.size(); ++p) pairs[p].plane = best.planes[p];
+    res.sweeps_run = best.sweeps;
+    res.sweep_gains = best.gains;
   }
   clock.lap("sweeps");
 

@@ -7,7 +7,7 @@ T=$(mktemp -d); trap 'rm -rf "$T"' EXIT
 fail() { echo "FAIL: $*"; exit 1; }
 
 # shell on every bundled example: certified, and the files as written pass `check`.
-for ex in three_boxes nested split_cube snowman.obj bars/bars_30; do
+for ex in three_boxes nested split_cube snowman.obj bars/bars_30 plank_star; do
   "$BIN" shell -q --out "$T/o" "$SRC/data/$ex" || fail "shell $ex exit $?"
   "$BIN" check -q "$T"/o/shell_*.obj > /dev/null || fail "check of written shells of $ex"
   grep -q '"certified": true' "$T/o/report.json" || fail "report of $ex not certified"
@@ -21,6 +21,12 @@ for m in lsf svm exact full; do
   diff -r "$T/a" "$T/b" > /dev/null || fail "method $m not deterministic"
   rm -rf "$T/a" "$T/b"
 done
+# The plank star runs full's two sweep starts on two threads: still the same bytes.
+"$BIN" shell -q --no-timings --out "$T/a" "$SRC/data/plank_star" || fail "run a plank_star"
+"$BIN" shell -q --no-timings --out "$T/b" "$SRC/data/plank_star" || fail "run b plank_star"
+diff -r "$T/a" "$T/b" > /dev/null || fail "two starts not deterministic"
+grep -q '"sweep_refits": [1-9]' "$T/a/report.json" || fail "plank star: no second start won"
+rm -rf "$T/a" "$T/b"
 
 # Existing non-empty output is refused without --force; an input is never overwritten.
 mkdir -p "$T/busy"; echo x > "$T/busy/keep"
