@@ -142,32 +142,11 @@ std::pair<std::vector<Row>, double> run_isolated(const fs::path& set, const std:
   return {rows, double(ru.ru_maxrss) / 1024.0};
 }
 
-// One random set: 4 to 12 boxes, centres uniform in [0, 3]^3, half extents uniform in
-// [0.2, 2], uniformly random rotations. Drawn from a 64-bit Mersenne twister with hand-made
-// uniforms, so every platform generates the same boxes.
+// One random set: 4 to 12 boxes, centres uniform in [0, 3]^3, half extents uniform in [0.2, 2].
 std::vector<Part> random_boxes(unsigned seed) {
   std::mt19937_64 rng(seed);
-  auto u = [&](double a, double b) { return a + (b - a) * double(rng() >> 11) * 0x1p-53; };
   const int n = 4 + int(rng() % 9);
-  std::vector<Part> parts(static_cast<std::size_t>(n));
-  for (int k = 0; k < n; ++k) {
-    const double c[3] = {u(0, 3), u(0, 3), u(0, 3)}, h[3] = {u(0.2, 2), u(0.2, 2), u(0.2, 2)};
-    // Uniform rotation from a uniform unit quaternion (Shoemake).
-    const double u1 = u(0, 1), u2 = u(0, 2 * M_PI), u3 = u(0, 2 * M_PI);
-    const double x = std::sqrt(1 - u1) * std::sin(u2), y = std::sqrt(1 - u1) * std::cos(u2),
-                 z = std::sqrt(u1) * std::sin(u3), w = std::sqrt(u1) * std::cos(u3);
-    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    parts[std::size_t(k)].name = "box" + std::to_string(k);
-    for (int corner = 0; corner < 8; ++corner) {
-      const double p[3] = {(corner & 1 ? 1 : -1) * h[0], (corner & 2 ? 1 : -1) * h[1], (corner & 4 ? 1 : -1) * h[2]};
-      double q[3];
-      for (int i = 0; i < 3; ++i) q[i] = c[i] + r[i][0] * p[0] + r[i][1] * p[1] + r[i][2] * p[2];
-      parts[std::size_t(k)].points.emplace_back(q[0], q[1], q[2]);
-    }
-  }
-  return parts;
+  return dcshell::bench::random_boxes(rng, n, 3.0, 0.2, 2.0);
 }
 
 // The random-boxes section of the document: per set, `exact`, `full` with its first start only

@@ -51,8 +51,9 @@ ExactPolytope intersect(const ExactPolytope& a, const ExactPolytope& b);
 ExactRational exact_volume(const ExactPolytope& p);
 
 /// Certified enclosure of the volume, from the interval approximations that Epeck keeps of
-/// every coordinate: the filter tried before exact_volume.
-CGAL::Interval_nt<false> volume_interval(const ExactPolytope& p);
+/// every coordinate: the filter tried before exact_volume. `tight` first evaluates exactly every
+/// vertex whose coordinates are not yet known to the ulp (slower, a much narrower enclosure).
+CGAL::Interval_nt<false> volume_interval(const ExactPolytope& p, bool tight = false);
 
 /// Volume from rounded coordinates (fast; for reporting and optimisation only).
 double approximate_volume(const ExactPolytope& p);

@@ -8,30 +8,48 @@
 
 namespace dcshell {
 
+/// How the union was summed.
+enum class UnionMethod {
+  automatic,     ///< nerve while its term count stays within a few times (parts + pairs), else decomposition
+  nerve,         ///< inclusion–exclusion over the nerve only (exponential in the deepest overlap)
+  decomposition  ///< interior-disjoint convex pieces only
+};
+
 struct UnionVolume {
   double value = 0.0;         ///< the volume, within `error_bound`
   double error_bound = 0.0;   ///< certified bound on |value - true volume|
   bool exact_fallback = false;///< the interval filter was too loose; value is the exact rational rounded
-  std::size_t terms = 0;      ///< inclusion-exclusion terms with a common interior
-  std::size_t max_clique = 0; ///< largest set of polytopes sharing interior
+  UnionMethod method = UnionMethod::nerve;  ///< the one that produced `value` (never automatic)
+  std::size_t terms = 0;      ///< nerve: inclusion–exclusion terms with a common interior;
+                              ///< decomposition: convex pieces
+  std::size_t max_clique = 0; ///< largest set of polytopes sharing interior that the nerve walk met
+                              ///< (a lower bound when it gave way to the decomposition)
 };
 
-/// vol(∪ P_i) by inclusion–exclusion over the nerve: only subsets whose intersection has an
-/// interior contribute, each intersection is convex and computed exactly, so the sum is exact.
-/// Subsets are enumerated depth-first, pruning as soon as the running intersection is empty.
+/// vol(∪ P_i), exactly. Two ways to the same number:
+/// - inclusion–exclusion over the nerve: only subsets whose intersection has an interior
+///   contribute, each intersection is convex and computed exactly, so the sum is exact. Subsets
+///   are enumerated depth-first, pruning as soon as the running intersection is empty. Cheapest
+///   when few polytopes share a point, but a region covered by k polytopes costs 2^k terms;
+/// - a decomposition of the union into interior-disjoint convex pieces (each polytope minus
+///   the larger ones it overlaps, split along their faces): polynomial whatever the depth.
+/// `automatic` walks the nerve and switches to the decomposition once the walk has produced
+/// more than 2·(polytopes + candidate pairs) + 256 terms, a deterministic rule.
 /// Terms are summed in interval arithmetic; only when the enclosure is wider than
 /// `max_relative_error` of the value is the sum redone with exact rationals.
-UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max_relative_error = 1e-12);
+UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max_relative_error = 1e-12,
+                         UnionMethod method = UnionMethod::automatic);
 
 /// The same, reusing the pairwise intersections `find_overlaps(polytopes)` already computed
-/// (every pair with a common interior, i < j): same terms, same sum, fewer exact intersections.
+/// (every pair with a common interior, i < j): same value, fewer exact intersections.
 UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, const std::vector<Overlap>& overlaps,
-                         double max_relative_error = 1e-12);
+                         double max_relative_error = 1e-12, UnionMethod method = UnionMethod::automatic);
 
 /// The same sum in exact rationals only (no interval filter): for callers that must decide the
 /// sign of a difference the enclosure cannot. `overlaps`, when given, is
 /// `find_overlaps(polytopes)`, reused as above.
 ExactRational exact_union_volume(const std::vector<ExactPolytope>& polytopes,
-                                 const std::vector<Overlap>* overlaps = nullptr);
+                                 const std::vector<Overlap>* overlaps = nullptr,
+                                 UnionMethod method = UnionMethod::automatic);
 
 }  // namespace dcshell

@@ -245,7 +245,7 @@ ExactRational exact_volume(const ExactPolytope& p) {
   return six_vol / 6;
 }
 
-CGAL::Interval_nt<false> volume_interval(const ExactPolytope& p) {
+CGAL::Interval_nt<false> volume_interval(const ExactPolytope& p, bool tight) {
   using I = CGAL::Interval_nt<false>;
   if (p.empty()) return I(0);
   using AK = Epeck::Approximate_kernel;
@@ -256,7 +256,8 @@ CGAL::Interval_nt<false> volume_interval(const ExactPolytope& p) {
     // A vertex from nearly parallel planes can carry a loose interval; evaluating it exactly
     // (rarely needed) makes Epeck replace its interval by a tight one.
     auto loose = [](const I& x) { return x.sup() - x.inf() > 1e-13 * (std::fabs(x.inf()) + std::fabs(x.sup()) + 1e-300); };
-    if (loose(a.x()) || loose(a.y()) || loose(a.z())) {
+    if (tight ? a.x().inf() != a.x().sup() || a.y().inf() != a.y().sup() || a.z().inf() != a.z().sup()
+              : loose(a.x()) || loose(a.y()) || loose(a.z())) {
       CGAL::exact(v);
       a = CGAL::approx(v);
     }

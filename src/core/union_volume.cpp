@@ -1,29 +1,40 @@
-// Exact union volume by inclusion–exclusion over the nerve of the polytopes.
+// Exact union volume: inclusion–exclusion over the nerve of the polytopes while the overlaps
+// are shallow, a disjoint convex decomposition of the union when they are deep.
 #include "dcshell/union_volume.h"
 
 #include "dcshell/overlaps.h"
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 namespace dcshell {
 
 namespace {
 
+// A term of the sum: a convex polytope whose volume is added (plus) or subtracted.
+struct Term {
+  ExactPolytope polytope;
+  bool plus = true;
+};
+
+// Depth-first walk over the subsets with a common interior, collecting their intersections
+// with the inclusion–exclusion sign. Stops (`abandoned`) once it holds `budget` terms: deep
+// overlaps make the nerve exponential, and the decomposition below then takes over.
 struct NerveWalk {
   const std::vector<ExactPolytope>& polys;
   const std::vector<std::vector<std::size_t>>& later;  // overlapping neighbours with larger index
   // Known pairwise intersections, parallel to `later` (null: compute them).
   const std::vector<std::vector<const ExactPolytope*>>* pair_region;
-  bool exact;
-  UnionVolume& out;
-  CGAL::Interval_nt<true> sum_interval{0};  // protected: sets the rounding mode itself
-  ExactRational sum_exact{0};
+  std::size_t budget;
+  std::vector<Term> terms;
+  std::size_t max_clique = 0;
+  bool abandoned = false;
 
   // `cur` = intersection of the chosen set (size `depth`), `cands` = indices that overlap every
   // member and come after the last one.
   void walk(const ExactPolytope& cur, std::size_t depth, const std::vector<std::size_t>& cands, std::size_t first) {
-    for (std::size_t c = 0; c < cands.size(); ++c) {
+    for (std::size_t c = 0; c < cands.size() && !abandoned; ++c) {
       std::size_t k = cands[c];
       ExactPolytope next;
       if (depth == 1 && pair_region) {
@@ -33,54 +44,151 @@ struct NerveWalk {
         next = intersect(cur, polys[k]);
       }
       if (next.empty()) continue;
-      add(next, depth + 1);
       std::vector<std::size_t> rest;
       for (std::size_t d = c + 1; d < cands.size(); ++d)
         if (std::binary_search(later[k].begin(), later[k].end(), cands[d])) rest.push_back(cands[d]);
-      if (!rest.empty()) walk(next, depth + 1, rest, first);
+      if (rest.empty()) {
+        add(std::move(next), depth + 1);
+      } else {
+        add(next, depth + 1);  // a copy: `terms` may reallocate during the walk below
+        walk(next, depth + 1, rest, first);
+      }
     }
   }
-  void add(const ExactPolytope& p, std::size_t depth) {
-    const bool plus = depth % 2 == 1;
-    if (exact) {
-      ExactRational v = exact_volume(p);
-      if (plus) sum_exact += v; else sum_exact -= v;
-    } else {
-      auto v = volume_interval(p);
-      CGAL::Interval_nt<true> w(v.inf(), v.sup());
-      if (plus) sum_interval += w; else sum_interval -= w;
+  void add(ExactPolytope p, std::size_t depth) {
+    if (terms.size() >= budget) {
+      abandoned = true;
+      return;
     }
-    ++out.terms;
-    out.max_clique = std::max(out.max_clique, depth);
+    terms.push_back({std::move(p), depth % 2 == 1});
+    max_clique = std::max(max_clique, depth);
   }
 };
 
-UnionVolume sum_over_nerve(const std::vector<ExactPolytope>& polys, const std::vector<std::vector<std::size_t>>& later,
-                           const std::vector<std::vector<const ExactPolytope*>>* pair_region,
-                           double max_relative_error, ExactRational* exact_sum) {
+// Interior-disjoint convex pieces whose union is the union of the polytopes: each polytope
+// minus the ones before it in decreasing volume (a part nested in a larger one then leaves no
+// piece at all). Q \ C is split along the faces of Q ∩ C that come from C, so every piece is
+// a convex polytope whose vertices meet three input planes, and all terms are positive: the
+// interval sum stays tight however deep the overlaps are.
+std::vector<ExactPolytope> disjoint_pieces(const std::vector<ExactPolytope>& polys,
+                                           const std::vector<std::vector<std::size_t>>& neighbours) {
+  constexpr int kOwn = 0, kCutter = 1;
+  auto retag = [](ExactPolytope p, int tag) {
+    for (auto& f : p.faces) f.tag = tag;
+    return p;
+  };
+  const std::size_t n = polys.size();
+  std::vector<double> vol(n);
+  for (std::size_t i = 0; i < n; ++i) vol[i] = approximate_volume(polys[i]);
+  std::vector<std::size_t> order(n), rank(n);
+  std::iota(order.begin(), order.end(), std::size_t(0));
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return vol[a] > vol[b]; });
+  for (std::size_t r = 0; r < n; ++r) rank[order[r]] = r;
+
+  std::vector<ExactPolytope> pieces;
+  for (std::size_t i : order) {
+    if (polys[i].empty()) continue;
+    std::vector<std::size_t> before;
+    for (std::size_t j : neighbours[i])
+      if (rank[j] < rank[i] && !polys[j].empty()) before.push_back(j);
+    std::sort(before.begin(), before.end(), [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
+    std::vector<ExactPolytope> mine{retag(polys[i], kOwn)};
+    for (std::size_t j : before) {
+      const ExactPolytope cutter = retag(polys[j], kCutter);
+      const CGAL::Bbox_3 cbox = bbox(cutter);
+      std::vector<ExactPolytope> next;
+      for (auto& q : mine) {
+        ExactPolytope r = CGAL::do_overlap(bbox(q), cbox) ? intersect(q, cutter) : ExactPolytope{};
+        if (r.empty()) {
+          next.push_back(std::move(q));
+          continue;
+        }
+        // R's faces tagged kCutter are C's planes bounding Q ∩ C inside Q: Q \ C is the
+        // union of Q ∩ {f_1..f_{k-1} <= 0} ∩ {f_k >= 0} over them, pairwise interior-disjoint.
+        ExactPolytope rest = std::move(q);
+        for (const auto& f : r.faces) {
+          if (f.tag != kCutter) continue;
+          ExactPolytope outside = clip(rest, f.plane.opposite(), kOwn);
+          if (!outside.empty()) next.push_back(std::move(outside));
+          rest = clip(rest, f.plane, kOwn);
+          if (rest.empty()) break;
+        }
+      }
+      mine = std::move(next);
+      if (mine.empty()) break;
+    }
+    for (auto& q : mine) pieces.push_back(std::move(q));
+  }
+  return pieces;
+}
+
+// Σ ±vol(term) to `max_relative_error`, in three steps, each only when the one before is too
+// loose: intervals from the coordinates' current approximations; intervals after evaluating
+// every vertex exactly (each coordinate then within an ulp); exact rationals (whose
+// denominators grow with every term: the expensive step). `exact_sum` asks for the last one.
+void sum_terms(const std::vector<Term>& terms, double max_relative_error, UnionVolume& out, ExactRational* exact_sum) {
+  out.exact_fallback = false;
+  if (!exact_sum) {
+    for (bool tight : {false, true}) {
+      CGAL::Interval_nt<true> sum(0);  // protected: sets the rounding mode itself
+      for (const auto& t : terms) {
+        const auto v = volume_interval(t.polytope, tight);
+        const CGAL::Interval_nt<true> w(v.inf(), v.sup());
+        if (t.plus) sum += w; else sum -= w;
+      }
+      out.value = 0.5 * (sum.inf() + sum.sup());
+      out.error_bound = 0.5 * (sum.sup() - sum.inf());
+      if (sum.sup() - sum.inf() <= max_relative_error * std::fabs(out.value)) return;
+    }
+  }
+  ExactRational total(0);
+  for (const auto& t : terms) {
+    if (t.plus) total += exact_volume(t.polytope); else total -= exact_volume(t.polytope);
+  }
+  out.value = CGAL::to_double(total);
+  out.error_bound = std::fabs(out.value) * 1e-16;  // rounding of the exact rational
+  out.exact_fallback = true;
+  if (exact_sum) *exact_sum = total;
+}
+
+// Nerve walk while it stays within budget (shallow overlaps: fewest exact constructions), else
+// the disjoint decomposition; then the sum.
+UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector<std::vector<std::size_t>>& later,
+                      const std::vector<std::vector<const ExactPolytope*>>* pair_region, double max_relative_error,
+                      UnionMethod method, ExactRational* exact_sum) {
   UnionVolume out;
   const std::size_t n = polys.size();
-  for (bool exact : {false, true}) {
-    if (!exact && exact_sum) continue;
-    out.terms = out.max_clique = 0;
-    NerveWalk w{polys, later, pair_region, exact, out};
-    for (std::size_t i = 0; i < n; ++i) {
+  std::size_t pairs = 0;
+  for (const auto& l : later) pairs += l.size();
+  // The nerve has at least n + pairs terms; many more means deep cliques, whose term count
+  // grows exponentially with their size.
+  const std::size_t budget = method == UnionMethod::nerve           ? SIZE_MAX
+                             : method == UnionMethod::decomposition ? 0
+                                                                    : 2 * (n + pairs) + 256;
+  std::vector<Term> terms;
+  bool walked = false;
+  if (budget > 0) {
+    NerveWalk w{polys, later, pair_region, budget, {}};
+    for (std::size_t i = 0; i < n && !w.abandoned; ++i) {
       if (polys[i].empty()) continue;
       w.add(polys[i], 1);
       if (!later[i].empty()) w.walk(polys[i], 1, later[i], i);
     }
-    if (!exact) {
-      double lo = w.sum_interval.inf(), hi = w.sum_interval.sup();
-      out.value = 0.5 * (lo + hi);
-      out.error_bound = 0.5 * (hi - lo);
-      if (hi - lo <= max_relative_error * std::fabs(out.value)) return out;
-    } else {
-      out.value = CGAL::to_double(w.sum_exact);
-      out.error_bound = std::fabs(out.value) * 1e-16;  // rounding of the exact rational
-      out.exact_fallback = true;
-      if (exact_sum) *exact_sum = w.sum_exact;
-    }
+    out.max_clique = w.max_clique;
+    walked = !w.abandoned;
+    if (walked) terms = std::move(w.terms);
   }
+  out.method = UnionMethod::nerve;
+  if (!walked) {
+    // Symmetric neighbour lists: the decomposition visits the polytopes by volume.
+    std::vector<std::vector<std::size_t>> neighbours(n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (std::size_t j : later[i]) neighbours[i].push_back(j), neighbours[j].push_back(i);
+    for (auto& p : disjoint_pieces(polys, neighbours)) terms.push_back({std::move(p), true});
+    out.method = UnionMethod::decomposition;
+  }
+  out.terms = terms.size();
+  sum_terms(terms, max_relative_error, out, exact_sum);
   return out;
 }
 
@@ -116,27 +224,28 @@ KnownPairs known_pairs(std::size_t n, const std::vector<Overlap>& overlaps) {
 
 }  // namespace
 
-UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error) {
-  return sum_over_nerve(polys, later_neighbours(polys), nullptr, max_relative_error, nullptr);
+UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error, UnionMethod method) {
+  return sum_union(polys, later_neighbours(polys), nullptr, max_relative_error, method, nullptr);
 }
 
-ExactRational exact_union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>* overlaps) {
+ExactRational exact_union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>* overlaps,
+                                 UnionMethod method) {
   ExactRational v(0);
   if (overlaps) {
     const KnownPairs k = known_pairs(polys.size(), *overlaps);
-    sum_over_nerve(polys, k.later, &k.region, 0.0, &v);
+    sum_union(polys, k.later, &k.region, 0.0, method, &v);
   } else {
-    sum_over_nerve(polys, later_neighbours(polys), nullptr, 0.0, &v);
+    sum_union(polys, later_neighbours(polys), nullptr, 0.0, method, &v);
   }
   return v;
 }
 
 UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>& overlaps,
-                         double max_relative_error) {
+                         double max_relative_error, UnionMethod method) {
   // Only pairs with a common interior can start a non-empty term, and their intersections are
   // already known: the walk starts from them.
   const KnownPairs k = known_pairs(polys.size(), overlaps);
-  return sum_over_nerve(polys, k.later, &k.region, max_relative_error, nullptr);
+  return sum_union(polys, k.later, &k.region, max_relative_error, method, nullptr);
 }
 
 }  // namespace dcshell

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <mutex>
 #include <numeric>
 
 #include "dcshell/convex_hull.h"
@@ -160,9 +161,16 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     c.seed = opt.cut.seed * 1000003u + p;  // independent, reproducible streams per pair
     return c;
   };
-  for (std::size_t p = 0; p < pairs.size(); ++p) {
-    progress("cut planes", p, pairs.size());
-    pairs[p].plane = fit_cut_plane(make_problem(p, hull_d[pairs[p].i], hull_d[pairs[p].j]), pair_options(p)).plane;
+  {
+    // Each pair's fit reads only the hulls and the overlap regions and has its own seed: the
+    // pairs run side by side, with the same planes as one after the other.
+    std::mutex progress_lock;
+    std::size_t done = 0;
+    parallel_for(pairs.size(), [&](std::size_t p) {
+      pairs[p].plane = fit_cut_plane(make_problem(p, hull_d[pairs[p].i], hull_d[pairs[p].j]), pair_options(p)).plane;
+      std::lock_guard<std::mutex> guard(progress_lock);
+      progress("cut planes", ++done, pairs.size());
+    });
   }
   clock.lap("cut planes");
 

@@ -90,6 +90,75 @@ BOOST_AUTO_TEST_CASE(union_of_known_boxes) {
   BOOST_TEST(CGAL::to_double(exact_union_volume(p, &o)) == expect + 0.5);
 }
 
+namespace {
+std::vector<ExactPolytope> hulls_of(const std::vector<std::vector<Point3>>& sets) {
+  std::vector<ExactPolytope> p;
+  for (std::size_t i = 0; i < sets.size(); ++i) p.push_back(exact_hull(sets[i], int(i)));
+  return p;
+}
+}  // namespace
+
+BOOST_AUTO_TEST_CASE(nerve_and_decomposition_agree_exactly) {
+  // Random rotated boxes (seeded), many overlapping in threes and fours, plus a nested and a
+  // duplicated one: the two methods share no code past the exact polytopes, so equal rationals
+  // check both.
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(0, 1);
+  std::vector<std::vector<Point3>> sets;
+  for (int k = 0; k < 14; ++k) {
+    const double cx = 3 * u(rng), cy = 3 * u(rng), cz = 3 * u(rng), a = 6 * u(rng), b = 6 * u(rng);
+    std::vector<Point3> pts;
+    for (const auto& q : box_points(-0.4 - u(rng), -0.4 - u(rng), -0.4 - u(rng), 0.4 + u(rng), 0.4 + u(rng), 0.4 + u(rng))) {
+      const double x = std::cos(a) * q.x() - std::sin(a) * q.y(), y = std::sin(a) * q.x() + std::cos(a) * q.y();
+      pts.emplace_back(cx + x, cy + std::cos(b) * y - std::sin(b) * q.z(), cz + std::sin(b) * y + std::cos(b) * q.z());
+    }
+    sets.push_back(pts);
+  }
+  sets.push_back(box_points(1.4, 1.4, 1.4, 1.5, 1.5, 1.5));
+  sets.push_back(sets[3]);
+  const std::vector<ExactPolytope> p = hulls_of(sets);
+  const UnionVolume nerve = union_volume(p, 1e-12, UnionMethod::nerve);
+  const UnionVolume pieces = union_volume(p, 1e-12, UnionMethod::decomposition);
+  BOOST_TEST((nerve.method == UnionMethod::nerve));
+  BOOST_TEST((pieces.method == UnionMethod::decomposition));
+  BOOST_TEST(nerve.max_clique >= 3u);
+  BOOST_TEST(std::fabs(nerve.value - pieces.value) <= nerve.error_bound + pieces.error_bound);
+  BOOST_TEST(exact_union_volume(p, nullptr, UnionMethod::nerve) == exact_union_volume(p, nullptr, UnionMethod::decomposition));
+  const std::vector<Overlap> o = find_overlaps(p);
+  BOOST_TEST(exact_union_volume(p, &o, UnionMethod::decomposition) == exact_union_volume(p, &o, UnionMethod::nerve));
+  // Nested and duplicated parts leave no piece: a box inside a box is one piece.
+  const std::vector<ExactPolytope> nested = hulls_of({box_points(0, 0, 0, 2, 2, 2), box_points(0.5, 0.5, 0.5, 1, 1, 1),
+                                                      box_points(0, 0, 0, 2, 2, 2)});
+  const UnionVolume n1 = union_volume(nested, 1e-12, UnionMethod::decomposition);
+  BOOST_TEST(n1.value == 8.0);
+  BOOST_TEST(n1.terms == 1u);
+}
+
+BOOST_AUTO_TEST_CASE(deep_overlap_is_summed_by_the_decomposition) {
+  // Ten planks through one axis: all 1023 subsets overlap. The nerve takes them all when forced;
+  // automatic gives way to the decomposition, and the exact values agree.
+  const std::vector<ExactPolytope> ten = hulls_of(test::plank_star(10, 0.004));
+  const UnionVolume nerve = union_volume(ten, 1e-12, UnionMethod::nerve);
+  BOOST_TEST(nerve.terms == 1023u);
+  BOOST_TEST(nerve.max_clique == 10u);
+  const UnionVolume autom = union_volume(ten);
+  BOOST_TEST((autom.method == UnionMethod::decomposition));
+  BOOST_TEST(autom.terms < 200u);
+  BOOST_TEST(std::fabs(nerve.value - autom.value) <= nerve.error_bound + autom.error_bound);
+  BOOST_TEST(exact_union_volume(ten, nullptr, UnionMethod::nerve) == exact_union_volume(ten));
+  // Thirty planks: a billion nerve terms, a few thousand pieces. The union is the planks minus
+  // what they share, so it lies between the largest plank and the sum, and it grows with each
+  // plank added.
+  const std::vector<ExactPolytope> thirty = hulls_of(test::plank_star(30, 0.003));
+  const UnionVolume deep = union_volume(thirty);
+  BOOST_TEST((deep.method == UnionMethod::decomposition));
+  BOOST_TEST(deep.error_bound <= 1e-12 * deep.value);
+  BOOST_TEST(deep.value > 8 * 0.6 * 0.1 * 1.5);
+  BOOST_TEST(deep.value < 30 * 8 * 0.6 * 0.1);
+  std::vector<ExactPolytope> fewer(thirty.begin(), thirty.end() - 1);
+  BOOST_TEST(exact_union_volume(fewer) < exact_union_volume(thirty));
+}
+
 BOOST_AUTO_TEST_CASE(volume_loss_has_the_true_sign_down_to_one_ulp) {
   // Two overlapping boxes with non-representable volumes, split exactly at x = c: the shells
   // fill the union, so the loss is exactly 0, whatever the doubles' rounding of the volumes.

@@ -68,6 +68,17 @@ BOOST_AUTO_TEST_CASE(boxes_and_a_tilted_prism_against_corefinement) {
   BOOST_TEST(our_union_volume(sets) == boolean_union_volume(sets), boost::test_tools::tolerance(1e-12));
 }
 
+BOOST_AUTO_TEST_CASE(plank_star_against_nef_union) {
+  // Twelve planks sharing one region around their common axis (4095 nerve terms): the
+  // automatic union takes the convex decomposition, which must agree with the Nef union.
+  const auto sets = dcshell::test::plank_star(12, 0.005);
+  std::vector<ExactPolytope> p;
+  for (const auto& pts : sets) p.push_back(exact_hull(pts));
+  const UnionVolume u = union_volume(p);
+  BOOST_TEST((u.method == UnionMethod::decomposition));
+  BOOST_TEST(u.value == boolean_union_volume(sets), boost::test_tools::tolerance(1e-12));
+}
+
 BOOST_AUTO_TEST_CASE(cow_hulls_against_corefinement, *boost::unit_test::precondition(dcshell::test::shared_data_present)) {
   std::vector<std::string> w;
   auto parts = load_parts({std::string(DCSHELL_SHARED_DATA) + "/composite/Cow"}, w);
