@@ -4,11 +4,13 @@
 // (b) the exact union volume of the parts' hulls, the denominator of `dcshell volume-loss`,
 //     as `automatic` computes it and by each of its two methods alone (nerve, decomposition).
 // Then generated deep overlaps: plank stars of k planks that all cross one axis (a k-fold
-// overlap: the nerve has 2^k - 1 terms; it is run up to k = 12), and random boxes at constant
-// density, 64, 128, ... of them.
-// Usage: bench_core [--data DIR] [--runs N] [--stars KMAX] [--boxes NMAX] [--set SET]...
+// overlap: the nerve has 2^k - 1 terms; it is run up to k = 12), random boxes at constant
+// density, 64, 128, ... of them, and 4, 8, ... UV spheres of ~1,000 faces around one point
+// (the nerve run up to 8).
+// Usage: bench_core [--data DIR] [--runs N] [--stars KMAX] [--boxes NMAX] [--spheres SMAX]
+//                   [--set SET]...
 //        (DIR defaults to ../shared/data; absent = skip; KMAX defaults to 24, NMAX to 256,
-//         0 = none; each --set adds a folder of parts, one per file, or a single mesh file)
+//         SMAX to 12, 0 = none; each --set adds a folder of parts, one per file, or a mesh file)
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -75,13 +77,14 @@ void row(const std::string& label, const std::vector<Part>& parts, int runs, boo
 
 int main(int argc, char** argv) {
   std::string data = "../shared/data";
-  int runs = 5, stars = 24, boxes = 256;
+  int runs = 5, stars = 24, boxes = 256, spheres = 12;
   std::vector<fs::path> extra;
   for (int i = 1; i + 1 < argc; i += 2) {
     if (!std::strcmp(argv[i], "--data")) data = argv[i + 1];
     if (!std::strcmp(argv[i], "--runs")) runs = std::max(1, std::atoi(argv[i + 1]));
     if (!std::strcmp(argv[i], "--stars")) stars = std::max(0, std::atoi(argv[i + 1]));
     if (!std::strcmp(argv[i], "--boxes")) boxes = std::max(0, std::atoi(argv[i + 1]));
+    if (!std::strcmp(argv[i], "--spheres")) spheres = std::max(0, std::atoi(argv[i + 1]));
     if (!std::strcmp(argv[i], "--set")) extra.emplace_back(argv[i + 1]);
   }
   std::vector<fs::path> sets = dcshell::bench::data_sets(data, {"composite", "acd"});
@@ -99,13 +102,19 @@ int main(int argc, char** argv) {
     }
     row(set.filename().string(), parts, runs, true);
   }
-  if (stars > 0 || boxes >= 64) std::printf("\n### Generated deep overlaps\n\n%s", kHeader);
+  if (stars > 0 || boxes >= 64 || spheres >= 4) std::printf("\n### Generated deep overlaps\n\n%s", kHeader);
   for (int k = 4; k <= stars; k += 4) row("plank star " + std::to_string(k), dcshell::bench::plank_star(k, 0.002), runs, k <= 12);
   // Random boxes in a cube whose side grows with the cube root of their number: a constant
   // density, overlaps several deep everywhere.
   for (int n = 64; n <= boxes; n *= 2) {
     std::mt19937_64 rng{std::uint64_t(n)};
     row("random boxes " + std::to_string(n), dcshell::bench::random_boxes(rng, n, 1.6 * std::cbrt(double(n)), 0.3, 1.5), runs, true);
+  }
+  // Round hulls of ~1,000 faces all overlapping: every clip cuts, and the nerve's alternating
+  // sum cancels enough to need rationals.
+  for (int n = 4; n <= spheres; n += 4) {
+    std::mt19937_64 rng{std::uint64_t(1000 + n)};
+    row("spheres " + std::to_string(n), dcshell::bench::random_spheres(rng, n, 16, 0.3), runs, n <= 8);
   }
   return 0;
 }

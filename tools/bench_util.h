@@ -92,4 +92,24 @@ inline std::vector<Part> plank_star(int k, double dz) {
   return planks;
 }
 
+/// n UV spheres (lat x 2·lat grid, poles included), radii uniform in [0.8, 1.2], centres
+/// uniform in [-spread, spread]^3: with a small spread every subset overlaps near the origin.
+inline std::vector<Part> random_spheres(std::mt19937_64& rng, int n, int lat, double spread) {
+  auto u = [&](double a, double b) { return a + (b - a) * double(rng() >> 11) * 0x1p-53; };
+  std::vector<Part> parts(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const double c[3] = {u(-spread, spread), u(-spread, spread), u(-spread, spread)}, r = u(0.8, 1.2);
+    auto& pts = parts[std::size_t(k)].points;
+    parts[std::size_t(k)].name = "sphere" + std::to_string(k);
+    pts.emplace_back(c[0], c[1], c[2] + r);
+    pts.emplace_back(c[0], c[1], c[2] - r);
+    for (int i = 1; i < lat; ++i)
+      for (int j = 0; j < 2 * lat; ++j) {
+        const double th = M_PI * i / lat, ph = M_PI * j / lat;
+        pts.emplace_back(c[0] + r * std::sin(th) * std::cos(ph), c[1] + r * std::sin(th) * std::sin(ph), c[2] + r * std::cos(th));
+      }
+  }
+  return parts;
+}
+
 }  // namespace dcshell::bench

@@ -10,7 +10,7 @@ namespace dcshell {
 
 /// How the union was summed.
 enum class UnionMethod {
-  automatic,     ///< nerve while its term count stays within a few times (parts + pairs), else decomposition
+  automatic,     ///< nerve while its cost stays within a few times the pairwise level, else decomposition
   nerve,         ///< inclusion–exclusion over the nerve only (exponential in the deepest overlap)
   decomposition  ///< interior-disjoint convex pieces only
 };
@@ -33,10 +33,13 @@ struct UnionVolume {
 ///   when few polytopes share a point, but a region covered by k polytopes costs 2^k terms;
 /// - a decomposition of the union into interior-disjoint convex pieces (each polytope minus
 ///   the larger ones it overlaps, split along their faces): polynomial whatever the depth.
-/// `automatic` walks the nerve and switches to the decomposition once the walk has produced
-/// more than 2·(polytopes + candidate pairs) + 256 terms, a deterministic rule.
-/// Terms are summed in interval arithmetic; only when the enclosure is wider than
-/// `max_relative_error` of the value is the sum redone with exact rationals.
+/// `automatic` walks the nerve and switches to the decomposition once the walk holds more than
+/// 2·(polytopes + candidate pairs) + 256 terms, or once its intersections of three or more
+/// polytopes have cost more than twice the pairwise ones (counted as vertices × planes
+/// tested): a deterministic rule. Terms are summed in interval arithmetic, then with every
+/// vertex evaluated exactly; when the enclosure is still wider than `max_relative_error` of the
+/// value, `automatic` sums the decomposition's positive terms instead of the nerve's cancelling
+/// ones, and only then are exact rationals used.
 UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max_relative_error = 1e-12,
                          UnionMethod method = UnionMethod::automatic);
 

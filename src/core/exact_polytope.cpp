@@ -91,24 +91,72 @@ ExactPolytope exact_hull(const std::vector<Point3>& points, int tag) {
   return out;
 }
 
-ExactPolytope clip(const ExactPolytope& p, const EPlane& h, int tag) {
-  const int n = static_cast<int>(p.vertices.size());
-  std::vector<CGAL::Oriented_side> s(n);
-  bool any_neg = false, any_pos = false;
-  for (int i = 0; i < n; ++i) {
-    s[i] = h.oriented_side(p.vertices[i]);
-    any_neg |= s[i] == CGAL::ON_NEGATIVE_SIDE;
-    any_pos |= s[i] == CGAL::ON_POSITIVE_SIDE;
-  }
-  if (!any_neg) return {};  // nothing of the interior is strictly inside h
-  if (!any_pos) return p;   // h does not cut the interior
+namespace {
 
-  // Which face is on the other side of each directed edge.
-  std::unordered_map<std::uint64_t, int> face_of_edge;
+// Side of every vertex of p with respect to h: interval approximations under one rounding
+// guard, the exact predicate only where they do not decide.
+struct VertexSides {
+  std::vector<CGAL::Oriented_side> s;
+  bool any_neg = false, any_pos = false;
+};
+VertexSides vertex_sides(const ExactPolytope& p, const EPlane& h) {
+  VertexSides r;
+  const std::size_t n = p.vertices.size();
+  r.s.assign(n, CGAL::ON_ORIENTED_BOUNDARY);
+  std::vector<std::size_t> undecided;
+  {
+    CGAL::Protect_FPU_rounding<true> guard;
+    const auto a = CGAL::approx(h.a()), b = CGAL::approx(h.b()), c = CGAL::approx(h.c()), d = CGAL::approx(h.d());
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& q = CGAL::approx(p.vertices[i]);
+      const auto v = a * q.x() + b * q.y() + c * q.z() + d;
+      if (v.inf() > 0) r.s[i] = CGAL::ON_POSITIVE_SIDE;
+      else if (v.sup() < 0) r.s[i] = CGAL::ON_NEGATIVE_SIDE;
+      else undecided.push_back(i);
+    }
+  }
+  for (std::size_t i : undecided) r.s[i] = h.oriented_side(p.vertices[i]);
+  for (auto x : r.s) {
+    r.any_neg |= x == CGAL::ON_NEGATIVE_SIDE;
+    r.any_pos |= x == CGAL::ON_POSITIVE_SIDE;
+  }
+  return r;
+}
+
+// p ∩ {h <= 0} when h has vertices strictly on both sides (`sides` from vertex_sides).
+ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::vector<CGAL::Oriented_side>& s);
+
+}  // namespace
+
+ExactPolytope clip(const ExactPolytope& p, const EPlane& h, int tag) {
+  const VertexSides vs = vertex_sides(p, h);
+  if (!vs.any_neg) return {};  // nothing of the interior is strictly inside h
+  if (!vs.any_pos) return p;   // h does not cut the interior
+  return cut(p, h, tag, vs.s);
+}
+
+namespace {
+
+ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::vector<CGAL::Oriented_side>& s) {
+  const int n = static_cast<int>(p.vertices.size());
+  // Which face is on the other side of each directed edge that h crosses (the only ones whose
+  // far face is needed), sorted for lookup.
+  std::vector<std::pair<std::uint64_t, int>> face_of_edge;
   for (int f = 0; f < int(p.faces.size()); ++f) {
     const auto& L = p.faces[f].loop;
-    for (std::size_t k = 0; k < L.size(); ++k) face_of_edge[edge_key(L[k], L[(k + 1) % L.size()])] = f;
+    for (std::size_t k = 0; k < L.size(); ++k) {
+      const int u = L[k], v = L[(k + 1) % L.size()];
+      if (s[u] != CGAL::ON_ORIENTED_BOUNDARY && s[v] != CGAL::ON_ORIENTED_BOUNDARY && s[u] != s[v])
+        face_of_edge.push_back({edge_key(u, v), f});
+    }
   }
+  std::sort(face_of_edge.begin(), face_of_edge.end());
+  auto far_face = [&](int u, int v) {
+    const std::uint64_t key = edge_key(v, u);
+    auto it = std::lower_bound(face_of_edge.begin(), face_of_edge.end(), std::make_pair(key, -1));
+    if (it == face_of_edge.end() || it->first != key) throw std::logic_error("exact polytope: edge without a far face");
+    return it->second;
+  };
 
   ExactPolytope out;
   std::vector<int> remap(n, -1);
@@ -148,7 +196,7 @@ ExactPolytope clip(const ExactPolytope& p, const EPlane& h, int tag) {
         auto it = crossing.find(key);
         int idx;
         if (it == crossing.end()) {
-          const int g = face_of_edge.at(edge_key(v, u));
+          const int g = far_face(u, v);
           idx = int(out.vertices.size());
           out.vertices.push_back(meet(F.plane, p.faces[g].plane, h));
           mark(idx, true);
@@ -186,8 +234,6 @@ ExactPolytope clip(const ExactPolytope& p, const EPlane& h, int tag) {
   return out;
 }
 
-namespace {
-
 // Conservative box of a polytope's vertices, from their interval approximations.
 struct IntervalBox {
   CGAL::Interval_nt<false> x, y, z;
@@ -218,9 +264,12 @@ ExactPolytope intersect(const ExactPolytope& a, const ExactPolytope& b) {
   IntervalBox box = interval_box(r);
   for (const auto& f : b.faces) {
     // Most planes of a large b miss r: an interval test on r's box skips them without
-    // classifying r's vertices or copying r (what clip() would return is r itself).
+    // classifying r's vertices, and a plane that passes no vertex costs no copy of r.
     if (box_strictly_below(box, f.plane)) continue;
-    r = clip(r, f.plane, f.tag);
+    const VertexSides vs = vertex_sides(r, f.plane);
+    if (!vs.any_pos) continue;
+    if (!vs.any_neg) return {};
+    r = cut(r, f.plane, f.tag, vs.s);
     if (r.empty()) return {};
     box = interval_box(r);
   }

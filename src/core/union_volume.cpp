@@ -4,6 +4,8 @@
 
 #include "dcshell/overlaps.h"
 
+#include <CGAL/Mpzf.h>
+
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -26,7 +28,9 @@ struct NerveWalk {
   const std::vector<std::vector<std::size_t>>& later;  // overlapping neighbours with larger index
   // Known pairwise intersections, parallel to `later` (null: compute them).
   const std::vector<std::vector<const ExactPolytope*>>* pair_region;
-  std::size_t budget;
+  std::size_t budget;       // most terms held
+  double work_budget;       // most vertex-plane tests spent on intersections of three or more
+  double work = 0;
   std::vector<Term> terms;
   std::size_t max_clique = 0;
   bool abandoned = false;
@@ -41,6 +45,12 @@ struct NerveWalk {
         const auto& l = later[first];
         next = *(*pair_region)[first][std::size_t(std::lower_bound(l.begin(), l.end(), k) - l.begin())];
       } else {
+        // An intersection tests the vertices of `cur` against the faces of the next polytope.
+        work += double(cur.vertices.size()) * double(polys[k].faces.size());
+        if (work > work_budget) {
+          abandoned = true;
+          return;
+        }
         next = intersect(cur, polys[k]);
       }
       if (next.empty()) continue;
@@ -122,25 +132,34 @@ std::vector<ExactPolytope> disjoint_pieces(const std::vector<ExactPolytope>& pol
   return pieces;
 }
 
-// Σ ±vol(term) to `max_relative_error`, in three steps, each only when the one before is too
-// loose: intervals from the coordinates' current approximations; intervals after evaluating
-// every vertex exactly (each coordinate then within an ulp); exact rationals (whose
-// denominators grow with every term: the expensive step). `exact_sum` asks for the last one.
-void sum_terms(const std::vector<Term>& terms, double max_relative_error, UnionVolume& out, ExactRational* exact_sum) {
-  out.exact_fallback = false;
-  if (!exact_sum) {
-    for (bool tight : {false, true}) {
-      CGAL::Interval_nt<true> sum(0);  // protected: sets the rounding mode itself
-      for (const auto& t : terms) {
-        const auto v = volume_interval(t.polytope, tight);
-        const CGAL::Interval_nt<true> w(v.inf(), v.sup());
-        if (t.plus) sum += w; else sum -= w;
+// Σ ±vol(term) in intervals, from the coordinates' current approximations, then (when that is
+// wider than `max_relative_error` of the value) after evaluating every vertex exactly (each
+// coordinate then within an ulp). False when both are too wide.
+bool interval_sum(const std::vector<Term>& terms, double max_relative_error, UnionVolume& out) {
+  for (bool tight : {false, true}) {
+    // The ends are summed exactly (doubles added into an Mpzf): rounding each of thousands of
+    // additions outward would widen the sum by an ulp of the total per term.
+    CGAL::Mpzf lo(0), hi(0);
+    for (const auto& t : terms) {
+      const auto v = volume_interval(t.polytope, tight);
+      if (t.plus) {
+        lo += CGAL::Mpzf(v.inf());
+        hi += CGAL::Mpzf(v.sup());
+      } else {
+        lo -= CGAL::Mpzf(v.sup());
+        hi -= CGAL::Mpzf(v.inf());
       }
-      out.value = 0.5 * (sum.inf() + sum.sup());
-      out.error_bound = 0.5 * (sum.sup() - sum.inf());
-      if (sum.sup() - sum.inf() <= max_relative_error * std::fabs(out.value)) return;
     }
+    const double l = lo.to_interval().first, h = hi.to_interval().second;
+    out.value = 0.5 * (l + h);
+    out.error_bound = 0.5 * (h - l);
+    if (h - l <= max_relative_error * std::fabs(out.value)) return true;
   }
+  return false;
+}
+
+// Σ ±vol(term) in exact rationals, whose denominators grow with every term: the expensive way.
+void exact_sum_of(const std::vector<Term>& terms, UnionVolume& out, ExactRational* exact_sum) {
   ExactRational total(0);
   for (const auto& t : terms) {
     if (t.plus) total += exact_volume(t.polytope); else total -= exact_volume(t.polytope);
@@ -151,8 +170,21 @@ void sum_terms(const std::vector<Term>& terms, double max_relative_error, UnionV
   if (exact_sum) *exact_sum = total;
 }
 
+std::vector<Term> decomposition_terms(const std::vector<ExactPolytope>& polys,
+                                      const std::vector<std::vector<std::size_t>>& later) {
+  // Symmetric neighbour lists: the decomposition visits the polytopes by volume.
+  std::vector<std::vector<std::size_t>> neighbours(polys.size());
+  for (std::size_t i = 0; i < polys.size(); ++i)
+    for (std::size_t j : later[i]) neighbours[i].push_back(j), neighbours[j].push_back(i);
+  std::vector<Term> terms;
+  for (auto& p : disjoint_pieces(polys, neighbours)) terms.push_back({std::move(p), true});
+  return terms;
+}
+
 // Nerve walk while it stays within budget (shallow overlaps: fewest exact constructions), else
-// the disjoint decomposition; then the sum.
+// the disjoint decomposition; then the sum. With `automatic`, a nerve sum whose cancellation
+// leaves the intervals too wide is also redone on the decomposition (positive terms) before
+// anything is summed in rationals. `exact_sum` asks for the rational sum.
 UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector<std::vector<std::size_t>>& later,
                       const std::vector<std::vector<const ExactPolytope*>>* pair_region, double max_relative_error,
                       UnionMethod method, ExactRational* exact_sum) {
@@ -161,34 +193,37 @@ UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector
   std::size_t pairs = 0;
   for (const auto& l : later) pairs += l.size();
   // The nerve has at least n + pairs terms; many more means deep cliques, whose term count
-  // grows exponentially with their size.
+  // grows exponentially with their size. Deep intersections of large polytopes are costly even
+  // when few: their work is held to twice that of the pairwise intersections.
   const std::size_t budget = method == UnionMethod::nerve           ? SIZE_MAX
                              : method == UnionMethod::decomposition ? 0
                                                                     : 2 * (n + pairs) + 256;
-  std::vector<Term> terms;
-  bool walked = false;
+  double pair_work = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j : later[i]) pair_work += double(polys[i].vertices.size()) * double(polys[j].faces.size());
+  const double work_budget = method == UnionMethod::nerve ? HUGE_VAL : 2 * pair_work + 1e5;
   if (budget > 0) {
-    NerveWalk w{polys, later, pair_region, budget, {}};
+    NerveWalk w{polys, later, pair_region, budget, work_budget, 0.0, {}};
     for (std::size_t i = 0; i < n && !w.abandoned; ++i) {
       if (polys[i].empty()) continue;
       w.add(polys[i], 1);
       if (!later[i].empty()) w.walk(polys[i], 1, later[i], i);
     }
     out.max_clique = w.max_clique;
-    walked = !w.abandoned;
-    if (walked) terms = std::move(w.terms);
+    if (!w.abandoned) {
+      out.method = UnionMethod::nerve;
+      out.terms = w.terms.size();
+      if (!exact_sum && interval_sum(w.terms, max_relative_error, out)) return out;
+      if (exact_sum || method == UnionMethod::nerve) {
+        exact_sum_of(w.terms, out, exact_sum);
+        return out;
+      }
+    }
   }
-  out.method = UnionMethod::nerve;
-  if (!walked) {
-    // Symmetric neighbour lists: the decomposition visits the polytopes by volume.
-    std::vector<std::vector<std::size_t>> neighbours(n);
-    for (std::size_t i = 0; i < n; ++i)
-      for (std::size_t j : later[i]) neighbours[i].push_back(j), neighbours[j].push_back(i);
-    for (auto& p : disjoint_pieces(polys, neighbours)) terms.push_back({std::move(p), true});
-    out.method = UnionMethod::decomposition;
-  }
+  const std::vector<Term> terms = decomposition_terms(polys, later);
+  out.method = UnionMethod::decomposition;
   out.terms = terms.size();
-  sum_terms(terms, max_relative_error, out, exact_sum);
+  if (exact_sum || !interval_sum(terms, max_relative_error, out)) exact_sum_of(terms, out, exact_sum);
   return out;
 }
 

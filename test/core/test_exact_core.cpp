@@ -159,6 +159,29 @@ BOOST_AUTO_TEST_CASE(deep_overlap_is_summed_by_the_decomposition) {
   BOOST_TEST(exact_union_volume(fewer) < exact_union_volume(thirty));
 }
 
+BOOST_AUTO_TEST_CASE(round_hulls_around_one_point_are_summed_without_rationals) {
+  // Six UV spheres whose centres are 0.1 apart: the nerve's alternating sum cancels to a few
+  // digits, the decomposition's positive pieces do not. The certified enclosure must hold the
+  // exact rational, computed here the slow way.
+  std::vector<std::vector<Point3>> sets;
+  for (int k = 0; k < 6; ++k) {
+    const double cx = 0.1 * (k % 3), cy = 0.1 * (k / 3), cz = 0.05 * k, r = 1.0 + 0.03 * k;
+    std::vector<Point3> pts{{cx, cy, cz + r}, {cx, cy, cz - r}};
+    for (int i = 1; i < 6; ++i)
+      for (int j = 0; j < 12; ++j) {
+        const double th = M_PI * i / 6, ph = M_PI * j / 6;
+        pts.emplace_back(cx + r * std::sin(th) * std::cos(ph), cy + r * std::sin(th) * std::sin(ph), cz + r * std::cos(th));
+      }
+    sets.push_back(pts);
+  }
+  const std::vector<ExactPolytope> p = hulls_of(sets);
+  const UnionVolume u = union_volume(p);
+  BOOST_TEST(!u.exact_fallback);
+  BOOST_TEST(u.error_bound <= 1e-12 * u.value);
+  const double exact = CGAL::to_double(exact_union_volume(p, nullptr, UnionMethod::decomposition));
+  BOOST_TEST(std::fabs(u.value - exact) <= u.error_bound);
+}
+
 BOOST_AUTO_TEST_CASE(volume_loss_has_the_true_sign_down_to_one_ulp) {
   // Two overlapping boxes with non-representable volumes, split exactly at x = c: the shells
   // fill the union, so the loss is exactly 0, whatever the doubles' rounding of the volumes.
