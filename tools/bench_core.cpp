@@ -23,6 +23,7 @@
 #include "dcshell/exact_polytope.h"
 #include "dcshell/load_parts.h"
 #include "bench_util.h"
+#include "synthetic_parts.h"
 #include "dcshell/error.h"
 #include "dcshell/union_volume.h"
 
@@ -103,18 +104,18 @@ int main(int argc, char** argv) {
     row(set.filename().string(), parts, runs, true);
   }
   if (stars > 0 || boxes >= 64 || spheres >= 4) std::printf("\n### Generated deep overlaps\n\n%s", kHeader);
-  for (int k = 4; k <= stars; k += 4) row("plank star " + std::to_string(k), dcshell::bench::plank_star(k, 0.002), runs, k <= 12);
+  for (int k = 4; k <= stars; k += 4) row("plank star " + std::to_string(k), dcshell::synthetic::plank_star(k, 0.002), runs, k <= 12);
   // Random boxes in a cube whose side grows with the cube root of their number: a constant
   // density, overlaps several deep everywhere.
   for (int n = 64; n <= boxes; n *= 2) {
     std::mt19937_64 rng{std::uint64_t(n)};
-    row("random boxes " + std::to_string(n), dcshell::bench::random_boxes(rng, n, 1.6 * std::cbrt(double(n)), 0.3, 1.5), runs, true);
+    row("random boxes " + std::to_string(n), dcshell::synthetic::random_boxes(rng, n, 1.6 * std::cbrt(double(n)), 0.3, 1.5), runs, true);
   }
   // Round hulls of ~1,000 faces all overlapping: every clip cuts, and the nerve's alternating
   // sum cancels enough to need rationals.
   for (int n = 4; n <= spheres; n += 4) {
     std::mt19937_64 rng{std::uint64_t(1000 + n)};
-    row("spheres " + std::to_string(n), dcshell::bench::random_spheres(rng, n, 16, 0.3), runs, n <= 8);
+    row("spheres " + std::to_string(n), dcshell::synthetic::random_spheres(rng, n, 16, 0.3), runs, n <= 8);
   }
   return 0;
 }

@@ -25,6 +25,7 @@
 #include <sstream>
 
 #include "bench_util.h"
+#include "synthetic_parts.h"
 #include "dcshell/atomic_output.h"
 #include "dcshell/build_shells.h"
 #include "dcshell/error.h"
@@ -146,7 +147,7 @@ std::pair<std::vector<Row>, double> run_isolated(const fs::path& set, const std:
 std::vector<Part> random_boxes(unsigned seed) {
   std::mt19937_64 rng(seed);
   const int n = 4 + int(rng() % 9);
-  return dcshell::bench::random_boxes(rng, n, 3.0, 0.2, 2.0);
+  return dcshell::synthetic::random_boxes(rng, n, 3.0, 0.2, 2.0);
 }
 
 // The random-boxes section of the document: per set, `exact`, `full` with its first start only

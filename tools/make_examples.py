@@ -2,13 +2,17 @@
 """Writes the small composite examples in data/ (run from the repository root).
 
 `--large-spheres DIR` instead writes, outside the repository, the scaling case of doc/shell.md:
-two overlapping UV spheres of 24,864 and 1,512 faces (one part per file).
+two overlapping UV spheres of 24,864 and 1,512 faces (one part per file). `--deep-overlaps DIR`
+writes the deep-overlap cases of doc/check.md: DIR/planks20 (twenty planks through one axis),
+DIR/boxes128 (128 randomly rotated boxes, seeded) and DIR/spheres8 (eight 960-face spheres
+around one point, seeded).
 
 Every example is a folder with one OBJ per part, except `snowman.obj`, whose connected
 components are the parts. Coordinates are exact decimals so the files are reproducible.
 """
 import math
 import os
+import random
 
 ROOT = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "data")
 
@@ -75,6 +79,26 @@ def large_spheres(out_dir):
     write(os.path.join(out_dir, "small.obj"), [sphere((1.1, 0.2, 0.1), 0.6, 28, 28)])
 
 
+def deep_overlaps(out_dir):
+    plank = box((-4, -0.3, -0.05), (4, 0.3, 0.05))
+    for k in range(20):
+        write(os.path.join(out_dir, "planks20", "plank_%02d.obj" % k), [transform(plank, 9.0 * k, (0, 0, 0.001 * k))])
+    rng = random.Random(128)
+    for k in range(128):
+        h = [rng.uniform(0.3, 1.5) for _ in range(3)]
+        c = [rng.uniform(0, 8) for _ in range(3)]
+        a, b = rng.uniform(0, 360), rng.uniform(0, 2 * math.pi)
+        v, f = transform(box((-h[0], -h[1], -h[2]), (h[0], h[1], h[2])), a)
+        # then a turn about x, and the move to the centre
+        v = [(round(x + c[0], 12), round(math.cos(b) * y - math.sin(b) * z + c[1], 12),
+              round(math.sin(b) * y + math.cos(b) * z + c[2], 12)) for x, y, z in v]
+        write(os.path.join(out_dir, "boxes128", "box_%03d.obj" % k), [(v, f)])
+    rng = random.Random(8)
+    for k in range(8):
+        c = tuple(rng.uniform(-0.3, 0.3) for _ in range(3))
+        write(os.path.join(out_dir, "spheres8", "sphere_%d.obj" % k), [sphere(c, rng.uniform(0.8, 1.2), 16, 32)])
+
+
 def main():
     # The paper's controlled study: two bars meeting at an elbow, at several angles.
     bar = box((-0.25, -2.0, -0.25), (0.25, 0.25, 0.25))
@@ -112,7 +136,9 @@ if __name__ == "__main__":
     import sys
     if len(sys.argv) == 3 and sys.argv[1] == "--large-spheres":
         large_spheres(sys.argv[2])
+    elif len(sys.argv) == 3 and sys.argv[1] == "--deep-overlaps":
+        deep_overlaps(sys.argv[2])
     elif len(sys.argv) == 1:
         main()
     else:
-        sys.exit("usage: make_examples.py [--large-spheres DIR]")
+        sys.exit("usage: make_examples.py [--large-spheres DIR | --deep-overlaps DIR]")

@@ -123,20 +123,7 @@ VertexSides vertex_sides(const ExactPolytope& p, const EPlane& h) {
   return r;
 }
 
-// p ∩ {h <= 0} when h has vertices strictly on both sides (`sides` from vertex_sides).
-ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::vector<CGAL::Oriented_side>& s);
-
-}  // namespace
-
-ExactPolytope clip(const ExactPolytope& p, const EPlane& h, int tag) {
-  const VertexSides vs = vertex_sides(p, h);
-  if (!vs.any_neg) return {};  // nothing of the interior is strictly inside h
-  if (!vs.any_pos) return p;   // h does not cut the interior
-  return cut(p, h, tag, vs.s);
-}
-
-namespace {
-
+// p ∩ {h <= 0} when h has vertices strictly on both sides (`s` from vertex_sides).
 ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::vector<CGAL::Oriented_side>& s) {
   const int n = static_cast<int>(p.vertices.size());
   // Which face is on the other side of each directed edge that h crosses (the only ones whose
@@ -233,6 +220,17 @@ ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::v
   }
   return out;
 }
+
+}  // namespace
+
+ExactPolytope clip(const ExactPolytope& p, const EPlane& h, int tag) {
+  const VertexSides vs = vertex_sides(p, h);
+  if (!vs.any_neg) return {};  // nothing of the interior is strictly inside h
+  if (!vs.any_pos) return p;   // h does not cut the interior
+  return cut(p, h, tag, vs.s);
+}
+
+namespace {
 
 // Conservative box of a polytope's vertices, from their interval approximations.
 struct IntervalBox {

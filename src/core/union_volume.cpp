@@ -21,8 +21,9 @@ struct Term {
 };
 
 // Depth-first walk over the subsets with a common interior, collecting their intersections
-// with the inclusion–exclusion sign. Stops (`abandoned`) once it holds `budget` terms: deep
-// overlaps make the nerve exponential, and the decomposition below then takes over.
+// with the inclusion–exclusion sign. Stops (`abandoned`) once it holds `budget` terms or its
+// deep intersections pass `work_budget`: deep overlaps make the nerve exponential, and the
+// decomposition below then takes over.
 struct NerveWalk {
   const std::vector<ExactPolytope>& polys;
   const std::vector<std::vector<std::size_t>>& later;  // overlapping neighbours with larger index

@@ -11,6 +11,7 @@
 #include "dcshell/overlaps.h"
 #include "dcshell/union_volume.h"
 #include "dcshell/volume_loss.h"
+#include "synthetic_parts.h"
 #include "test_util.h"
 
 using namespace dcshell;
@@ -91,10 +92,15 @@ BOOST_AUTO_TEST_CASE(union_of_known_boxes) {
 }
 
 namespace {
-std::vector<ExactPolytope> hulls_of(const std::vector<std::vector<Point3>>& sets) {
+std::vector<ExactPolytope> hulls_of(const std::vector<Part>& parts) {
   std::vector<ExactPolytope> p;
-  for (std::size_t i = 0; i < sets.size(); ++i) p.push_back(exact_hull(sets[i], int(i)));
+  for (std::size_t i = 0; i < parts.size(); ++i) p.push_back(exact_hull(parts[i].points, int(i)));
   return p;
+}
+std::vector<Part> parts_of(const std::vector<std::vector<Point3>>& sets) {
+  std::vector<Part> parts(sets.size());
+  for (std::size_t i = 0; i < sets.size(); ++i) parts[i].points = sets[i];
+  return parts;
 }
 }  // namespace
 
@@ -102,19 +108,9 @@ BOOST_AUTO_TEST_CASE(nerve_and_decomposition_agree_exactly) {
   // Random rotated boxes (seeded), many overlapping in threes and fours, plus a nested and a
   // duplicated one: the two methods share no code past the exact polytopes, so equal rationals
   // check both.
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<std::vector<Point3>> sets;
-  for (int k = 0; k < 14; ++k) {
-    const double cx = 3 * u(rng), cy = 3 * u(rng), cz = 3 * u(rng), a = 6 * u(rng), b = 6 * u(rng);
-    std::vector<Point3> pts;
-    for (const auto& q : box_points(-0.4 - u(rng), -0.4 - u(rng), -0.4 - u(rng), 0.4 + u(rng), 0.4 + u(rng), 0.4 + u(rng))) {
-      const double x = std::cos(a) * q.x() - std::sin(a) * q.y(), y = std::sin(a) * q.x() + std::cos(a) * q.y();
-      pts.emplace_back(cx + x, cy + std::cos(b) * y - std::sin(b) * q.z(), cz + std::sin(b) * y + std::cos(b) * q.z());
-    }
-    sets.push_back(pts);
-  }
-  sets.push_back(box_points(1.4, 1.4, 1.4, 1.5, 1.5, 1.5));
+  std::mt19937_64 rng(7);
+  std::vector<Part> sets = synthetic::random_boxes(rng, 14, 3.0, 0.4, 1.4);
+  sets.push_back(parts_of({box_points(1.4, 1.4, 1.4, 1.5, 1.5, 1.5)})[0]);
   sets.push_back(sets[3]);
   const std::vector<ExactPolytope> p = hulls_of(sets);
   const UnionVolume nerve = union_volume(p, 1e-12, UnionMethod::nerve);
@@ -127,8 +123,8 @@ BOOST_AUTO_TEST_CASE(nerve_and_decomposition_agree_exactly) {
   const std::vector<Overlap> o = find_overlaps(p);
   BOOST_TEST(exact_union_volume(p, &o, UnionMethod::decomposition) == exact_union_volume(p, &o, UnionMethod::nerve));
   // Nested and duplicated parts leave no piece: a box inside a box is one piece.
-  const std::vector<ExactPolytope> nested = hulls_of({box_points(0, 0, 0, 2, 2, 2), box_points(0.5, 0.5, 0.5, 1, 1, 1),
-                                                      box_points(0, 0, 0, 2, 2, 2)});
+  const std::vector<ExactPolytope> nested = hulls_of(parts_of({box_points(0, 0, 0, 2, 2, 2), box_points(0.5, 0.5, 0.5, 1, 1, 1),
+                                                               box_points(0, 0, 0, 2, 2, 2)}));
   const UnionVolume n1 = union_volume(nested, 1e-12, UnionMethod::decomposition);
   BOOST_TEST(n1.value == 8.0);
   BOOST_TEST(n1.terms == 1u);
@@ -137,7 +133,7 @@ BOOST_AUTO_TEST_CASE(nerve_and_decomposition_agree_exactly) {
 BOOST_AUTO_TEST_CASE(deep_overlap_is_summed_by_the_decomposition) {
   // Ten planks through one axis: all 1023 subsets overlap. The nerve takes them all when forced;
   // automatic gives way to the decomposition, and the exact values agree.
-  const std::vector<ExactPolytope> ten = hulls_of(test::plank_star(10, 0.004));
+  const std::vector<ExactPolytope> ten = hulls_of(synthetic::plank_star(10, 0.004));
   const UnionVolume nerve = union_volume(ten, 1e-12, UnionMethod::nerve);
   BOOST_TEST(nerve.terms == 1023u);
   BOOST_TEST(nerve.max_clique == 10u);
@@ -149,7 +145,7 @@ BOOST_AUTO_TEST_CASE(deep_overlap_is_summed_by_the_decomposition) {
   // Thirty planks: a billion nerve terms, a few thousand pieces. The union is the planks minus
   // what they share, so it lies between the largest plank and the sum, and it grows with each
   // plank added.
-  const std::vector<ExactPolytope> thirty = hulls_of(test::plank_star(30, 0.003));
+  const std::vector<ExactPolytope> thirty = hulls_of(synthetic::plank_star(30, 0.003));
   const UnionVolume deep = union_volume(thirty);
   BOOST_TEST((deep.method == UnionMethod::decomposition));
   BOOST_TEST(deep.error_bound <= 1e-12 * deep.value);
@@ -160,20 +156,11 @@ BOOST_AUTO_TEST_CASE(deep_overlap_is_summed_by_the_decomposition) {
 }
 
 BOOST_AUTO_TEST_CASE(round_hulls_around_one_point_are_summed_without_rationals) {
-  // Six UV spheres whose centres are 0.1 apart: the nerve's alternating sum cancels to a few
-  // digits, the decomposition's positive pieces do not. The certified enclosure must hold the
-  // exact rational, computed here the slow way.
-  std::vector<std::vector<Point3>> sets;
-  for (int k = 0; k < 6; ++k) {
-    const double cx = 0.1 * (k % 3), cy = 0.1 * (k / 3), cz = 0.05 * k, r = 1.0 + 0.03 * k;
-    std::vector<Point3> pts{{cx, cy, cz + r}, {cx, cy, cz - r}};
-    for (int i = 1; i < 6; ++i)
-      for (int j = 0; j < 12; ++j) {
-        const double th = M_PI * i / 6, ph = M_PI * j / 6;
-        pts.emplace_back(cx + r * std::sin(th) * std::cos(ph), cy + r * std::sin(th) * std::sin(ph), cz + r * std::cos(th));
-      }
-    sets.push_back(pts);
-  }
+  // Six UV spheres of 62 vertices whose centres are at most 0.2 apart: the nerve's alternating
+  // sum cancels to a few digits, the decomposition's positive pieces do not. The certified
+  // enclosure must hold the exact rational, computed here the slow way.
+  std::mt19937_64 rng(6);
+  const std::vector<Part> sets = synthetic::random_spheres(rng, 6, 6, 0.1);
   const std::vector<ExactPolytope> p = hulls_of(sets);
   const UnionVolume u = union_volume(p);
   BOOST_TEST(!u.exact_fallback);

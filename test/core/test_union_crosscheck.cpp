@@ -12,6 +12,7 @@
 #include "dcshell/exact_polytope.h"
 #include "dcshell/load_parts.h"
 #include "dcshell/union_volume.h"
+#include "synthetic_parts.h"
 #include "test_util.h"
 
 using namespace dcshell;
@@ -71,9 +72,12 @@ BOOST_AUTO_TEST_CASE(boxes_and_a_tilted_prism_against_corefinement) {
 BOOST_AUTO_TEST_CASE(plank_star_against_nef_union) {
   // Twelve planks sharing one region around their common axis (4095 nerve terms): the
   // automatic union takes the convex decomposition, which must agree with the Nef union.
-  const auto sets = dcshell::test::plank_star(12, 0.005);
+  std::vector<std::vector<Point3>> sets;
   std::vector<ExactPolytope> p;
-  for (const auto& pts : sets) p.push_back(exact_hull(pts));
+  for (const auto& plank : synthetic::plank_star(12, 0.005)) {
+    sets.push_back(plank.points);
+    p.push_back(exact_hull(plank.points));
+  }
   const UnionVolume u = union_volume(p);
   BOOST_TEST((u.method == UnionMethod::decomposition));
   BOOST_TEST(u.value == boolean_union_volume(sets), boost::test_tools::tolerance(1e-12));

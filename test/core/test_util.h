@@ -4,7 +4,6 @@
 
 #include <boost/test/unit_test.hpp>
 
-#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -16,19 +15,6 @@ namespace dcshell::test {
 
 inline std::vector<Point3> box_points(double x0, double y0, double z0, double x1, double y1, double z1) {
   return {{x0, y0, z0}, {x1, y0, z0}, {x1, y1, z0}, {x0, y1, z0}, {x0, y0, z1}, {x1, y0, z1}, {x1, y1, z1}, {x0, y1, z1}};
-}
-
-/// Corners of k planks 8 x 0.6 x 0.1, the i-th turned by 180·i/k degrees about the z axis and
-/// raised by dz·i: with k·dz < 0.1 every subset of them overlaps around the axis.
-inline std::vector<std::vector<Point3>> plank_star(int k, double dz) {
-  std::vector<std::vector<Point3>> planks;
-  for (int i = 0; i < k; ++i) {
-    const double a = M_PI * i / k, c = std::cos(a), s = std::sin(a);
-    std::vector<Point3> p;
-    for (const auto& q : box_points(-4, -0.3, -0.05, 4, 0.3, 0.05)) p.emplace_back(c * q.x() - s * q.y(), s * q.x() + c * q.y(), q.z() + dz * i);
-    planks.push_back(std::move(p));
-  }
-  return planks;
 }
 
 /// Text of an OBJ box (quads, outward).
