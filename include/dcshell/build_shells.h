@@ -27,6 +27,11 @@ struct ShellOptions {
   /// also runs a second start that re-fits those pairs from scratch in its first sweep, and keeps
   /// whichever start leaves the shells more volume (doc/shell.md, "Two starts").
   bool second_start = true;
+  /// Where the second start runs and the pairwise planes together cut a fifth or more off the
+  /// hulls, a third start places the planes pair by pair (larger hulls first), each fitted from
+  /// scratch against its hulls trimmed by the planes placed before it (doc/shell.md, "Three
+  /// starts"). Off: two starts at most.
+  bool constructive_start = true;
   /// Sweeps stop once one gains less than this fraction of the hulls' total volume (each sweep
   /// gains less than the one before, typically by a factor of 2 to 10).
   double sweep_tolerance = 2e-6;
@@ -80,8 +85,11 @@ struct ShellResult {
   int sweeps_run = 0;
   /// Objective decrease of each sweep, as a fraction of the hulls' total volume.
   std::vector<double> sweep_gains;
-  /// Pairs the winning second start re-fitted from scratch (0 when the first start won or none ran).
+  /// Pairs the winning start re-fitted from scratch (0 when the first start won or none ran).
   std::size_t sweep_refits = 0;
+  /// The start whose planes were kept: 0 the pairwise planes polished, 1 the second start
+  /// (reshaped pairs re-fitted), 2 the constructive start (planes placed pair by pair).
+  int sweep_start = 0;
   double union_volume = 0.0;           ///< of the parts' original convex hulls (certified enclosure midpoint)
   double shells_volume = 0.0;
   double volume_loss = 0.0;            ///< (union - shells) / union, correctly signed (volume_loss.h)

@@ -40,6 +40,7 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
       .field("seed", static_cast<std::int64_t>(opt.cut.seed))
       .field("max_sweeps", opt.max_sweeps)
       .field("global_sweeps", opt.global_sweeps)
+      .field("starts", opt.second_start ? opt.constructive_start ? 3 : 2 : 1)
       .field("sweep_tolerance", opt.sweep_tolerance)
       .field("absorb_fraction", opt.absorb_fraction)
       .field("simplify_iterations", opt.simplify_iterations)
@@ -109,6 +110,7 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
       .field("sweeps", r.sweeps_run)
       .field("sweep_gains", r.sweep_gains)
       .field("sweep_refits", r.sweep_refits)
+      .field("sweep_start", r.sweep_start == 2 ? "constructive" : r.sweep_start == 1 ? "refit-reshaped" : "pairwise")
       .field("union_volume", r.union_volume)
       .field("shells_volume", r.shells_volume)
       .field("volume_loss", r.volume_loss)
@@ -145,6 +147,7 @@ int run_shell(int argc, char** argv) {
     std::string out, method = "full";
     ShellOptions opt;
     std::uint64_t seed = 1;
+    int starts = 3;
     opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (required)")(
         "method,m", po::value(&method)->default_value("full"),
         "cut-plane method: lsf | svm | exact (the paper's) | full (normal and offset optimised)")(
@@ -157,6 +160,9 @@ int run_shell(int argc, char** argv) {
         "sweep-tolerance", po::value(&opt.sweep_tolerance)->default_value(opt.sweep_tolerance),
         "stop the sweeps once one gains less than this fraction of the hulls' volume")(
         "global-sweeps", "full: re-fit pairs from scratch in every sweep (slower, sometimes a little less loss)")(
+        "starts", po::value(&starts)->default_value(3),
+        "full: sweep starts where hulls overlap heavily: 1 the pairwise planes, 2 also reshaped pairs re-fitted, "
+        "3 also planes placed pair by pair (the best start is kept)")(
         "absorb-fraction", po::value(&opt.absorb_fraction)->default_value(0.99),
         "absorb a part whose hull has at least this fraction inside one other hull")(
         "simplify-iterations", po::value(&opt.simplify_iterations)->default_value(0),
@@ -189,6 +195,9 @@ int run_shell(int argc, char** argv) {
     if (!(opt.max_volume_increase >= 0) || !std::isfinite(opt.max_volume_increase))
       throw InputError("--max-volume-increase must be a finite number >= 0");
     opt.global_sweeps = vm.count("global-sweeps") > 0;
+    if (starts < 1 || starts > 3) throw InputError("--starts must be 1, 2 or 3");
+    opt.second_start = starts >= 2;
+    opt.constructive_start = starts >= 3;
     const bool quiet = vm.count("quiet");
 
     std::vector<std::string> files = expand_inputs(inputs);

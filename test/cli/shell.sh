@@ -21,11 +21,12 @@ for m in lsf svm exact full; do
   diff -r "$T/a" "$T/b" > /dev/null || fail "method $m not deterministic"
   rm -rf "$T/a" "$T/b"
 done
-# The plank star runs full's two sweep starts on two threads: still the same bytes.
+# The plank star runs full's three sweep starts on two threads: still the same bytes.
 "$BIN" shell -q --no-timings --out "$T/a" "$SRC/data/plank_star" || fail "run a plank_star"
 "$BIN" shell -q --no-timings --out "$T/b" "$SRC/data/plank_star" || fail "run b plank_star"
-diff -r "$T/a" "$T/b" > /dev/null || fail "two starts not deterministic"
-grep -q '"sweep_refits": [1-9]' "$T/a/report.json" || fail "plank star: no second start won"
+diff -r "$T/a" "$T/b" > /dev/null || fail "three starts not deterministic"
+grep -q '"sweep_refits": [1-9]' "$T/a/report.json" || fail "plank star: no later start won"
+grep -q '"sweep_start": "constructive"' "$T/a/report.json" || fail "plank star: $(grep sweep_start "$T/a/report.json")"
 rm -rf "$T/a" "$T/b"
 
 # Existing non-empty output is refused without --force; an input is never overwritten.
@@ -97,6 +98,7 @@ for k in $(seq 0 15); do
 done
 "$BIN" shell -q --out "$T/star_out" "$T/star" || fail "shell of the plank star"
 grep -q '"certified": true' "$T/star_out/report.json" || fail "plank star shells not certified"
+[ "$(ls "$T/star_out"/shell_*.obj | wc -l)" -eq 16 ] || fail "plank star: a plank lost its shell"
 "$BIN" volume-loss -q --parts "$T/star" --shells "$T/star_out" > "$T/star.json" || fail "volume-loss of the plank star"
 grep -q '"union_method": "decomposition"' "$T/star.json" || fail "plank star union: $(grep union_ "$T/star.json")"
 # Both are certified enclosures of the same exact number (the two reached it by different walks).
