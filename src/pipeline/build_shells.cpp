@@ -311,7 +311,11 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
       if (cut >= kConstructive * total) starts.push_back(Start::construct);
     }
     std::vector<SweepRun> runs(starts.size());
-    parallel_for(runs.size(), [&](std::size_t k) { runs[k] = run_sweeps(initial, starts[k]); });
+    // The costliest start first: with three starts on two threads, the other two share a thread.
+    parallel_for(runs.size(), [&](std::size_t k) {
+      const std::size_t r = runs.size() - 1 - k;
+      runs[r] = run_sweeps(initial, starts[r]);
+    });
     std::size_t win = 0;
     double win_kept = kept_volume(runs[0].planes);
     for (std::size_t k = 1; k < runs.size(); ++k) {
