@@ -123,30 +123,43 @@ VertexSides vertex_sides(const ExactPolytope& p, const EPlane& h) {
   return r;
 }
 
-// p ∩ {h <= 0} when h has vertices strictly on both sides (`s` from vertex_sides).
+// p ∩ {h <= 0} when h has vertices strictly on both sides (`s` from vertex_sides). Runs once
+// per plane of an intersection, so it avoids per-face hashing and regrowth: lookups go through
+// the sorted list of crossed edges, and every buffer is sized up front.
 ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::vector<CGAL::Oriented_side>& s) {
   const int n = static_cast<int>(p.vertices.size());
-  // Which face is on the other side of each directed edge that h crosses (the only ones whose
-  // far face is needed), sorted for lookup.
-  std::vector<std::pair<std::uint64_t, int>> face_of_edge;
+  // The directed edges that h crosses, each with the face it belongs to, sorted for lookup; the
+  // far face of u -> v owns v -> u, and both directions share the new vertex.
+  struct Crossed {
+    std::uint64_t key;
+    int face;
+  };
+  std::vector<Crossed> crossed;
   for (int f = 0; f < int(p.faces.size()); ++f) {
     const auto& L = p.faces[f].loop;
     for (std::size_t k = 0; k < L.size(); ++k) {
       const int u = L[k], v = L[(k + 1) % L.size()];
       if (s[u] != CGAL::ON_ORIENTED_BOUNDARY && s[v] != CGAL::ON_ORIENTED_BOUNDARY && s[u] != s[v])
-        face_of_edge.push_back({edge_key(u, v), f});
+        crossed.push_back({edge_key(u, v), f});
     }
   }
-  std::sort(face_of_edge.begin(), face_of_edge.end());
-  auto far_face = [&](int u, int v) {
-    const std::uint64_t key = edge_key(v, u);
-    auto it = std::lower_bound(face_of_edge.begin(), face_of_edge.end(), std::make_pair(key, -1));
-    if (it == face_of_edge.end() || it->first != key) throw std::logic_error("exact polytope: edge without a far face");
-    return it->second;
+  std::sort(crossed.begin(), crossed.end(), [](const Crossed& x, const Crossed& y) { return x.key < y.key; });
+  auto find = [&](int u, int v) {
+    const std::uint64_t key = edge_key(u, v);
+    auto it = std::lower_bound(crossed.begin(), crossed.end(), key,
+                               [](const Crossed& c, std::uint64_t k) { return c.key < k; });
+    if (it == crossed.end() || it->key != key) throw std::logic_error("exact polytope: edge without a far face");
+    return static_cast<std::size_t>(it - crossed.begin());
   };
+  std::vector<int> new_vertex(crossed.size(), -1);  // per directed crossed edge
 
+  // Output vertices: the kept ones in the order first met, and one per crossed edge.
+  const std::size_t most = std::size_t(n) + crossed.size() / 2;
   ExactPolytope out;
+  out.vertices.reserve(most);
+  out.faces.reserve(p.faces.size() + 1);
   std::vector<int> remap(n, -1);
+  std::vector<char> on_h(most, 0);
   auto keep = [&](int v) {
     if (remap[v] < 0) {
       remap[v] = int(out.vertices.size());
@@ -154,42 +167,35 @@ ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::v
     }
     return remap[v];
   };
-  std::unordered_map<std::uint64_t, int> crossing;  // undirected edge -> new vertex
-  std::vector<char> on_h;                           // per output vertex
-  auto mark = [&](int idx, bool value) {
-    if (int(on_h.size()) <= idx) on_h.resize(idx + 1, 0);
-    on_h[idx] = value;
-  };
 
-  std::unordered_map<int, int> cap_next;  // cap boundary, directed: from -> to
+  std::vector<int> cap_next(most, -1);  // cap boundary, directed: from -> to
+  std::size_t cap_edges = 0;
   bool face_on_h = false;
   for (int f = 0; f < int(p.faces.size()); ++f) {
     const auto& F = p.faces[f];
     const auto& L = F.loop;
     std::vector<int> loop;
+    loop.reserve(L.size() + 1);  // a convex polygon clipped by a line gains at most one corner
     bool all_zero = true;
     for (std::size_t k = 0; k < L.size(); ++k) {
       int u = L[k], v = L[(k + 1) % L.size()];
       all_zero &= s[u] == CGAL::ON_ORIENTED_BOUNDARY;
       if (s[u] != CGAL::ON_POSITIVE_SIDE) {
         int iu = keep(u);
-        mark(iu, s[u] == CGAL::ON_ORIENTED_BOUNDARY);
+        on_h[iu] = s[u] == CGAL::ON_ORIENTED_BOUNDARY;
         loop.push_back(iu);
       }
       bool crosses = (s[u] == CGAL::ON_NEGATIVE_SIDE && s[v] == CGAL::ON_POSITIVE_SIDE) ||
                      (s[u] == CGAL::ON_POSITIVE_SIDE && s[v] == CGAL::ON_NEGATIVE_SIDE);
       if (crosses) {
-        auto key = edge_key(std::min(u, v), std::max(u, v));
-        auto it = crossing.find(key);
-        int idx;
-        if (it == crossing.end()) {
-          const int g = far_face(u, v);
+        const std::size_t here = find(u, v);
+        int idx = new_vertex[here];
+        if (idx < 0) {
+          const std::size_t there = find(v, u);
           idx = int(out.vertices.size());
-          out.vertices.push_back(meet(F.plane, p.faces[g].plane, h));
-          mark(idx, true);
-          crossing.emplace(key, idx);
-        } else {
-          idx = it->second;
+          out.vertices.push_back(meet(F.plane, p.faces[crossed[there].face].plane, h));
+          on_h[idx] = 1;
+          new_vertex[here] = new_vertex[there] = idx;
         }
         loop.push_back(idx);
       }
@@ -199,23 +205,26 @@ ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::v
     if (!all_zero) {
       for (std::size_t k = 0; k < loop.size(); ++k) {
         int a = loop[k], b = loop[(k + 1) % loop.size()];
-        if (on_h[a] && on_h[b]) cap_next[b] = a;  // the cap runs the other way round
+        if (on_h[a] && on_h[b]) {  // the cap runs the other way round
+          cap_edges += cap_next[b] < 0;
+          cap_next[b] = a;
+        }
       }
     }
     out.faces.push_back({F.plane, std::move(loop), F.tag});
   }
-  if (!face_on_h && cap_next.size() >= 3) {
+  if (!face_on_h && cap_edges >= 3) {
     ExactPolytope::Face cap;
     cap.plane = h;
     cap.tag = tag;
-    int start = std::min_element(cap_next.begin(), cap_next.end())->first;
+    cap.loop.reserve(cap_edges);
+    const int start = int(std::find_if(cap_next.begin(), cap_next.end(), [](int x) { return x >= 0; }) - cap_next.begin());
     int v = start;
     do {
       cap.loop.push_back(v);
-      auto it = cap_next.find(v);
-      if (it == cap_next.end()) throw std::logic_error("exact polytope: open cap boundary");
-      v = it->second;
-    } while (v != start && cap.loop.size() <= cap_next.size());
+      v = cap_next[v];
+      if (v < 0) throw std::logic_error("exact polytope: open cap boundary");
+    } while (v != start && cap.loop.size() <= cap_edges);
     out.faces.push_back(std::move(cap));
   }
   return out;
@@ -238,12 +247,14 @@ struct IntervalBox {
 };
 IntervalBox interval_box(const ExactPolytope& p) {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
-  for (const auto& v : p.vertices)
+  for (const auto& v : p.vertices) {
+    const auto& q = CGAL::approx(v);  // the interval point: no lazy number per coordinate
+    const CGAL::Interval_nt<false> c[3] = {q.x(), q.y(), q.z()};
     for (int d = 0; d < 3; ++d) {
-      const auto iv = CGAL::approx(v[d]);
-      lo[d] = std::min(lo[d], iv.inf());
-      hi[d] = std::max(hi[d], iv.sup());
+      lo[d] = std::min(lo[d], c[d].inf());
+      hi[d] = std::max(hi[d], c[d].sup());
     }
+  }
   return {{lo[0], hi[0]}, {lo[1], hi[1]}, {lo[2], hi[2]}};
 }
 
