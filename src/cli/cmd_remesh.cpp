@@ -59,7 +59,8 @@ int run_remesh(int argc, char** argv) {
         "no-domes", "keep flat facets on neighbour planes exactly where they were (no fattest re-triangulation by 1e-9 domes)")(
         "no-splits", "no lifted edge splits (they spend the faces collapses saved on the worst slivers)")(
         "no-timings", "leave times out of report.json (byte-identical reruns)")(
-        "force,f", "replace an existing non-empty output directory");
+        "force,f", "replace an existing non-empty output directory")(
+        "quiet,q", "no summary on stderr (a failure is still explained there: nothing is written then)");
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
     if (inputs.empty()) throw InputError("no input shells (see 'dcshell remesh --help')");
@@ -145,8 +146,9 @@ int run_remesh(int argc, char** argv) {
     dir.commit();
     double fb = 0, fa = 0;
     for (auto& s : stats) fb += s.fatness_before, fa += s.fatness_after;
-    std::cerr << "certified: " << result.size() << " shells in " << dir.target() << ", mean fatness "
-              << fb / stats.size() << " -> " << fa / stats.size() << " (" << secs << " s)\n";
+    if (!vm.count("quiet"))
+      std::cerr << "certified: " << result.size() << " shells in " << dir.target() << ", mean fatness "
+                << fb / stats.size() << " -> " << fa / stats.size() << " (" << secs << " s)\n";
     return 0;
   });
 }

@@ -99,7 +99,7 @@ void write_motion(const std::vector<std::string>& names, const std::vector<Shell
 // Drops the shells that enclose no volume (flat) or a negligible one (below `load_parts`' tiny fraction, 1e-12, of the cube
 // of the whole set's bounding-box diagonal), warning for each; refuses a set with none left.
 // Returns the input index of every shell kept.
-std::vector<std::size_t> skip_flat_and_tiny(std::vector<std::string>& files, std::vector<Mesh>& meshes) {
+std::vector<std::size_t> skip_flat_and_tiny(std::vector<std::string>& files, std::vector<Mesh>& meshes, bool quiet) {
   CGAL::Bbox_3 box;
   for (const auto& m : meshes)
     for (auto v : m.vertices()) box += m.point(v).bbox();
@@ -117,7 +117,7 @@ std::vector<std::size_t> skip_flat_and_tiny(std::vector<std::string>& files, std
       problem = buf;
     }
     if (!problem.empty()) {
-      std::cerr << "dcshell unfold: warning: " << files[k] << " " << problem << "; skipped\n";
+      if (!quiet) std::cerr << "dcshell unfold: warning: " << files[k] << " " << problem << "; skipped\n";
       why.push_back(files[k] + " " + problem);
       continue;
     }
@@ -152,6 +152,7 @@ int run_unfold(int argc, char** argv) {
     opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (created atomically)")(
         "no-timings", "leave times out of unfold.json (byte-identical reruns)")(
         "force,f", "replace an existing non-empty output directory")(
+        "quiet,q", "no warnings or summary on stderr (errors only; the exit status and unfold.json tell the rest)")(
         "heuristic", po::value(&heuristic)->default_value("best"),
         "steepest|flat|min-perimeter|random|greedy|ga|best (best: every heuristic with retries; ga: then a genetic search; greedy: overlap-aware Kruskal, longest fold first, refusing folds that overlap)")(
         "objective", po::value(&objective)->default_value("hull-area"), "hull-area|cut-length: what 'best' minimises")(
@@ -201,13 +202,14 @@ int run_unfold(int argc, char** argv) {
     if (vm.count("motion") && frames < 2) throw InputError("--motion-frames must be at least 2");
 
     const bool timings = !vm.count("no-timings");
+    const bool quiet = vm.count("quiet") > 0;
     auto t0 = std::chrono::steady_clock::now();
     auto files = expand_inputs(inputs);
     std::vector<Mesh> meshes;
     for (auto& f : files) meshes.push_back(read_mesh(f));
     // Input index of each shell kept: a flat or tiny shell among good ones is skipped with a
     // warning (net_k.obj keeps the input's index k).
-    const std::vector<std::size_t> index = skip_flat_and_tiny(files, meshes);
+    const std::vector<std::size_t> index = skip_flat_and_tiny(files, meshes, quiet);
     AtomicDirectory dir(out, vm.count("force") > 0, files);
     std::vector<std::string> protect = files;
     protect.insert(protect.end(), inputs.begin(), inputs.end());
@@ -250,6 +252,7 @@ int run_unfold(int argc, char** argv) {
       s.net.name = name;
       s.net_file = numbered("net_", index[k], ".obj");
       dir.write(s.net_file, [&](std::ostream& os) { write_net_obj(s.net, os); });
+      if (quiet) continue;
       if (!s.stats.convex)
         std::cerr << "dcshell unfold: warning: " << files[k] << " is not convex (" << s.stats.reflex_edges
                   << " reflex edges, up to " << s.stats.max_reflex_angle * 180 / M_PI << " degrees); unfolded anyway\n";
@@ -304,7 +307,7 @@ int run_unfold(int argc, char** argv) {
     if (!motion.empty()) write_motion(frame_names, shells, frames_out);
     dir.commit();
     frames_out.commit();
-    std::cerr << (all_good ? "ok: " : "NOT ok: ") << shells.size() << " nets written to " << out << "\n";
+    if (!quiet) std::cerr << (all_good ? "ok: " : "NOT ok: ") << shells.size() << " nets written to " << out << "\n";
     return all_good ? 0 : 1;
   });
 }

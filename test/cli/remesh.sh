@@ -43,6 +43,8 @@ BEGIN {
 [ $? -eq 0 ] || { cat "$tmp/err"; fail "remesh of a certified pair"; }
 [ -f "$tmp/out/shell_000.obj" ] && [ -f "$tmp/out/shell_001.obj" ] && [ -f "$tmp/out/report.json" ] || fail "outputs"
 "$bin" check -q "$tmp/out/shell_000.obj" "$tmp/out/shell_001.obj" > /dev/null || fail "written shells are not certified"
+"$bin" remesh -q --out "$tmp/outq" "$tmp/left.obj" "$tmp/right.obj" 2> "$tmp/errq" || fail "quiet remesh"
+[ ! -s "$tmp/errq" ] && [ -f "$tmp/outq/report.json" ] || fail "-q: $(cat "$tmp/errq")"
 for k in faces_before faces_after fatness_before fatness_after volume_increase domed_facets max_sink; do
   grep -q "\"$k\"" "$tmp/out/report.json" || fail "report lacks $k"
 done

@@ -84,6 +84,10 @@ printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0.25 0.25 0\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2
 "$BIN" unfold --out "$T/fl" "$T/a_flat.obj" "$T/tet.obj" 2> "$T/err.txt" || fail "flat shell among good ones: $(cat "$T/err.txt")"
 grep -q "a_flat.obj is flat.*skipped" "$T/err.txt" || fail "flat shell warning: $(cat "$T/err.txt")"
 [ -s "$T/fl/net_001.obj" ] && [ ! -e "$T/fl/net_000.obj" ] || fail "flat shell: net numbering"
+# -q: the same outputs, nothing on stderr (the warning is in unfold.json only).
+"$BIN" unfold -q --no-timings --out "$T/flq" "$T/a_flat.obj" "$T/tet.obj" 2> "$T/err.txt" || fail "quiet run"
+[ ! -s "$T/err.txt" ] || fail "-q still printed: $(cat "$T/err.txt")"
+[ -s "$T/flq/net_001.obj" ] || fail "-q wrote no net"
 
 # Bad input: one line naming the file, exit 2, nothing written.
 expect_2() {
