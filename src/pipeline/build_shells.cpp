@@ -201,6 +201,28 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     // A hull that the other planes have cut by more than this fraction no longer resembles the
     // one its pairwise plane was fitted to; polishing that plane can stay in the wrong basin.
     constexpr double kReshaped = 0.3;
+    // Runs f(p) for the pairs in `order` as if one after the other, but side by side where
+    // that cannot change anything: f(p) reads and writes only the planes (and the per-part
+    // state) of p's two parts, so p must wait only for the pairs before it that share a part.
+    // Each pair goes into the first wave after all of those; a wave's pairs share no part.
+    auto in_waves = [&](const std::vector<std::size_t>& order, const std::function<void(std::size_t)>& f,
+                        const std::function<void(std::size_t)>& done = {}) {
+      std::vector<std::vector<std::size_t>> waves;
+      std::vector<std::size_t> last(n, 0);  // per part: 1 + the wave of its latest pair so far
+      for (std::size_t p : order) {
+        const std::size_t w = std::max(last[pairs[p].i], last[pairs[p].j]);
+        if (waves.size() <= w) waves.resize(w + 1);
+        waves[w].push_back(p);
+        last[pairs[p].i] = last[pairs[p].j] = w + 1;
+      }
+      std::size_t count = 0;
+      for (const auto& wave : waves) {
+        parallel_for(wave.size(), [&](std::size_t k) { f(wave[k]); });
+        if (done) done(count += wave.size());
+      }
+    };
+    std::vector<std::size_t> index_order(pairs.size());
+    std::iota(index_order.begin(), index_order.end(), 0);
     enum class Start { polish, refit_reshaped, construct };
     auto run_sweeps = [&](std::vector<CutPlane> planes, Start start) {
       SweepRun run;
@@ -210,13 +232,12 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
         // trimmed by the planes placed before it: a part's later planes then keep the side its
         // earlier ones kept, where independent pairwise planes may each keep another side
         // (many hulls through one region; doc/shell.md, "Three starts").
-        std::vector<char> placed(pairs.size(), 0), trimmed(n, 0);
+        std::vector<char> placed(pairs.size(), 0), trimmed(n, 0), fitted(pairs.size(), 0);
         // The larger hulls' pairs first: the smaller hulls then fit around their planes.
-        std::vector<std::size_t> order(pairs.size());
-        std::iota(order.begin(), order.end(), 0);
+        std::vector<std::size_t> order = index_order;
         auto larger = [&](std::size_t q) { return std::max(vol[pairs[q].i], vol[pairs[q].j]); };
         std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return larger(x) > larger(y); });
-        for (std::size_t p : order) {
+        in_waves(order, [&](std::size_t p) {
           const std::size_t i = pairs[p].i, j = pairs[p].j;
           if (trimmed[i] || trimmed[j]) {
             ConvexPolytope a = trimmed_except(planes, i, p, &placed), b = trimmed_except(planes, j, p, &placed);
@@ -224,7 +245,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
               // Even a hull the placed planes barely trimmed gets a new fit: between two equal
               // hulls, that trim is what decides which one the plane cuts.
               planes[p] = fit_cut_plane(make_problem(p, std::move(a), std::move(b)), pair_options(p)).plane;
-              ++run.refits;
+              fitted[p] = 1;
             } else if (!a.empty() || !b.empty()) {
               // One side is gone already: the plane keeps the whole overlap for the other.
               const Eigen::Vector3d nrm = planes[p].normal;
@@ -235,7 +256,8 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
           }  // else both hulls are still whole: the pairwise plane is that fit already
           placed[p] = 1;
           trimmed[i] = trimmed[j] = 1;
-        }
+        });
+        run.refits = static_cast<std::size_t>(std::count(fitted.begin(), fitted.end(), 1));
       }
       // A pair's refit depends only on the planes of its two parts: skip it while none of them
       // changed since its last fit (the fit is deterministic, so the answer would be the same).
@@ -243,16 +265,18 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
       std::vector<std::pair<std::size_t, std::size_t>> fitted_at(pairs.size(),
                                                                    {~std::size_t(0), ~std::size_t(0)});
       for (int s = 0; s < opt.max_sweeps; ++s) {
-        double gain = 0;
-        for (std::size_t p = 0; p < pairs.size(); ++p) {
-          if (!refit_reshaped) progress("sweep " + std::to_string(s + 1), p, pairs.size());
+        // Per pair, summed in pair order afterwards: the same bits as one pair after the other.
+        std::vector<double> pair_gain(pairs.size(), 0.0);
+        std::vector<char> refit(pairs.size(), 0);
+        const std::string stage = "sweep " + std::to_string(s + 1);
+        in_waves(index_order, [&](std::size_t p) {
           const std::size_t i = pairs[p].i, j = pairs[p].j;
-          if (pairs_of[i].size() + pairs_of[j].size() <= 2) continue;  // nothing else trims them
+          if (pairs_of[i].size() + pairs_of[j].size() <= 2) return;  // nothing else trims them
           const std::pair<std::size_t, std::size_t> now{version[i], version[j]};
-          if (fitted_at[p] == now) continue;
+          if (fitted_at[p] == now) return;
           fitted_at[p] = now;
           ConvexPolytope a = trimmed_except(planes, i, p), b = trimmed_except(planes, j, p);
-          if (a.empty() || b.empty()) continue;
+          if (a.empty() || b.empty()) return;
           const bool reshaped = s == 0 && (volume(a) < (1 - kReshaped) * vol[i] ||
                                            volume(b) < (1 - kReshaped) * vol[j]);
           CutProblem prob = make_problem(p, std::move(a), std::move(b));
@@ -261,16 +285,21 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
           CutOptions o = pair_options(p);
           const bool from_scratch = opt.global_sweeps || (refit_reshaped && reshaped);
           if (!from_scratch) o.warm_start = planes[p];
-          run.refits += refit_reshaped && reshaped;
+          refit[p] = refit_reshaped && reshaped;
           CutResult cand = fit_cut_plane(prob, o);
           if (cand.objective < cur.objective - 1e-12 * scale) {
-            gain += cur.objective - cand.objective;
+            pair_gain[p] = cur.objective - cand.objective;
             planes[p] = cand.plane;
             ++version[i];
             ++version[j];
             fitted_at[p] = {version[i], version[j]};
           }
-        }
+        }, [&](std::size_t done) {
+          if (start == Start::polish) progress(stage, done, pairs.size());  // one start reports
+        });
+        double gain = 0;
+        for (double g : pair_gain) gain += g;
+        run.refits += static_cast<std::size_t>(std::count(refit.begin(), refit.end(), 1));
         run.sweeps = s + 1;
         run.gains.push_back(scale > 0 ? gain / scale : 0.0);
         if (gain <= opt.sweep_tolerance * scale) break;
