@@ -328,7 +328,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
             two_starts = true;
     std::vector<Start> starts = {Start::polish};
     if (two_starts) starts.push_back(Start::refit_reshaped);
-    // The constructive start costs a sequential from-scratch fit per pair; it runs where the
+    // The constructive start costs a from-scratch fit per pair, in waves; it runs where the
     // pairwise planes together cut a fifth or more off the hulls (the shared composite models
     // and ACD sets: 0.1-14%, where it changed no loss by more than 0.003 points; the random boxes
     // of doc/results.md: 8-57%; plank stars: 77-97%).
