@@ -28,6 +28,11 @@ diff -r "$T/a" "$T/b" > /dev/null || fail "three starts not deterministic"
 grep -q '"sweep_refits": [1-9]' "$T/a/report.json" || fail "plank star: no later start won"
 grep -q '"sweep_start": "constructive"' "$T/a/report.json" || fail "plank star: $(grep sweep_start "$T/a/report.json")"
 rm -rf "$T/a" "$T/b"
+"$BIN" shell -q --starts 4 --out "$T/a" "$SRC/data/plank_star" 2> "$T/err"; [ $? -eq 2 ] || fail "--starts 4 accepted"
+grep -q -- "--starts must be 1, 2 or 3" "$T/err" && [ ! -e "$T/a" ] || fail "--starts 4: $(cat "$T/err")"
+"$BIN" shell -q --no-timings --starts 2 --out "$T/a" "$SRC/data/plank_star" || fail "--starts 2"
+grep -q '"sweep_start": "refit-reshaped"' "$T/a/report.json" || fail "--starts 2: $(grep sweep_start "$T/a/report.json")"
+rm -rf "$T/a"
 
 # Existing non-empty output is refused without --force; an input is never overwritten.
 mkdir -p "$T/busy"; echo x > "$T/busy/keep"
