@@ -43,7 +43,6 @@ double time_union(int runs, const std::vector<Part>& parts, UnionMethod method, 
   });
 }
 
-const char* name(UnionMethod m) { return m == UnionMethod::nerve ? "nerve" : "decomposition"; }
 
 const char* kHeader =
     "| set | parts | check (median s) | overlapping pairs | union volume (median s) | method, terms | deepest overlap met | "
@@ -69,7 +68,7 @@ void row(const std::string& label, const std::vector<Part>& parts, int runs, boo
       std::fprintf(stderr, "bench_core: %s: the two methods disagree: %.17g vs %.17g\n", label.c_str(), nerve.value, dec.value);
   }
   std::printf("| %s | %zu | %.3f | %zu | %.3f | %s%s, %zu | %zu | %s | %.3f, %zu |\n", label.c_str(), parts.size(), tc,
-              rep.overlaps.size(), tu, name(uv.method), uv.exact_fallback ? " (exact)" : "", uv.terms, uv.max_clique,
+              rep.overlaps.size(), tu, to_string(uv.method), uv.exact_fallback ? " (exact)" : "", uv.terms, uv.max_clique,
               nerve_cell.c_str(), td, dec.terms);
   std::fflush(stdout);
 }

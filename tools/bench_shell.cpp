@@ -202,7 +202,7 @@ std::string random_boxes_section(int sets, int runs, const std::string& only) {
     std::snprintf(line, sizeof line,
                   "| %s | %zu | %zu | %.3f%% (%zu) | %.3f%% (%zu) | %.3f%% (%zu) | %.3f%% (%zu) | %d | %.3f | %.3f | %.3f |\n",
                   name, parts.size(), r[3].overlapping_pairs, 100 * e, r[0].shells.size(), 100 * r[1].volume_loss,
-                  r[1].shells.size(), 100 * two, r[2].shells.size(), 100 * full, r[3].shells.size(), r[3].sweep_start,
+                  r[1].shells.size(), 100 * two, r[2].shells.size(), 100 * full, r[3].shells.size(), static_cast<int>(r[3].sweep_start),
                   t[1], t[2], t[3]);
     md << line;
   }

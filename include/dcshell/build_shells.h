@@ -14,6 +14,15 @@
 
 namespace dcshell {
 
+/// The sweep starts of `full` (doc/shell.md, "Two starts", "Three starts").
+enum class SweepStart {
+  pairwise,        ///< the pairwise planes, polished
+  refit_reshaped,  ///< pairs whose hulls the other planes reshaped re-fitted from scratch first
+  constructive     ///< planes placed pair by pair against the hulls trimmed so far
+};
+/// "pairwise", "refit-reshaped", "constructive" (as in report.json).
+const char* to_string(SweepStart start);
+
 struct ShellOptions {
   CutOptions cut;  ///< method (default full), lambda, svm_c, seed
   /// Maximum refinement sweeps: each re-optimises every pair's plane against the two hulls as
@@ -87,9 +96,7 @@ struct ShellResult {
   std::vector<double> sweep_gains;
   /// Pairs the winning start re-fitted from scratch (0 when the first start won or none ran).
   std::size_t sweep_refits = 0;
-  /// The start whose planes were kept: 0 the pairwise planes polished, 1 the second start
-  /// (reshaped pairs re-fitted), 2 the constructive start (planes placed pair by pair).
-  int sweep_start = 0;
+  SweepStart sweep_start = SweepStart::pairwise;  ///< the start whose planes were kept
   double union_volume = 0.0;           ///< of the parts' original convex hulls (certified enclosure midpoint)
   double shells_volume = 0.0;
   double volume_loss = 0.0;            ///< (union - shells) / union, correctly signed (volume_loss.h)

@@ -15,6 +15,9 @@ enum class UnionMethod {
   decomposition  ///< interior-disjoint convex pieces only
 };
 
+/// "automatic", "nerve", "decomposition" (as in the volume-loss report).
+const char* to_string(UnionMethod method);
+
 struct UnionVolume {
   double value = 0.0;         ///< the volume, within `error_bound`
   double error_bound = 0.0;   ///< certified bound on |value - true volume|

@@ -110,7 +110,7 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
       .field("sweeps", r.sweeps_run)
       .field("sweep_gains", r.sweep_gains)
       .field("sweep_refits", r.sweep_refits)
-      .field("sweep_start", r.sweep_start == 2 ? "constructive" : r.sweep_start == 1 ? "refit-reshaped" : "pairwise")
+      .field("sweep_start", to_string(r.sweep_start))
       .field("union_volume", r.union_volume)
       .field("shells_volume", r.shells_volume)
       .field("volume_loss", r.volume_loss)

@@ -260,6 +260,15 @@ KnownPairs known_pairs(std::size_t n, const std::vector<Overlap>& overlaps) {
 
 }  // namespace
 
+const char* to_string(UnionMethod method) {
+  switch (method) {
+    case UnionMethod::automatic: break;
+    case UnionMethod::nerve: return "nerve";
+    case UnionMethod::decomposition: return "decomposition";
+  }
+  return "automatic";
+}
+
 UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error, UnionMethod method) {
   return sum_union(polys, later_neighbours(polys), nullptr, max_relative_error, method, nullptr);
 }

@@ -81,6 +81,15 @@ std::vector<AbsorbedPart> absorb_nested(const std::vector<Overlap>& overlaps, co
 
 }  // namespace
 
+const char* to_string(SweepStart start) {
+  switch (start) {
+    case SweepStart::pairwise: break;
+    case SweepStart::refit_reshaped: return "refit-reshaped";
+    case SweepStart::constructive: return "constructive";
+  }
+  return "pairwise";
+}
+
 ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt) {
   ShellResult res;
   StageClock clock(res.times);
@@ -223,11 +232,10 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     };
     std::vector<std::size_t> index_order(pairs.size());
     std::iota(index_order.begin(), index_order.end(), 0);
-    enum class Start { polish, refit_reshaped, construct };
-    auto run_sweeps = [&](std::vector<CutPlane> planes, Start start) {
+    auto run_sweeps = [&](std::vector<CutPlane> planes, SweepStart start) {
       SweepRun run;
-      const bool refit_reshaped = start == Start::refit_reshaped;
-      if (start == Start::construct) {
+      const bool refit_reshaped = start == SweepStart::refit_reshaped;
+      if (start == SweepStart::constructive) {
         // Planes placed one pair at a time, each fitted from scratch against its two hulls as
         // trimmed by the planes placed before it: a part's later planes then keep the side its
         // earlier ones kept, where independent pairwise planes may each keep another side
@@ -295,7 +303,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
             fitted_at[p] = {version[i], version[j]};
           }
         }, [&](std::size_t done) {
-          if (start == Start::polish) progress(stage, done, pairs.size());  // one start reports
+          if (start == SweepStart::pairwise) progress(stage, done, pairs.size());  // one start reports
         });
         double gain = 0;
         for (double g : pair_gain) gain += g;
@@ -326,8 +334,8 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
         for (std::size_t part : {pairs[p].i, pairs[p].j})
           if (pairs_of[part].size() > 1 && volume(trimmed_except(initial, part, p)) < (1 - kReshaped) * vol[part])
             two_starts = true;
-    std::vector<Start> starts = {Start::polish};
-    if (two_starts) starts.push_back(Start::refit_reshaped);
+    std::vector<SweepStart> starts = {SweepStart::pairwise};
+    if (two_starts) starts.push_back(SweepStart::refit_reshaped);
     // The constructive start costs a from-scratch fit per pair, in waves; it runs where the
     // pairwise planes together cut a fifth or more off the hulls (the shared composite models
     // and ACD sets: 0.1-14%, where it changed no loss by more than 0.003 points; the random boxes
@@ -337,7 +345,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
       double cut = 0, total = 0;
       for (std::size_t i = 0; i < n; ++i)
         if (active[i]) cut += vol[i] - volume(trimmed_except(initial, i, pairs.size())), total += vol[i];
-      if (cut >= kConstructive * total) starts.push_back(Start::construct);
+      if (cut >= kConstructive * total) starts.push_back(SweepStart::constructive);
     }
     std::vector<SweepRun> runs(starts.size());
     // The costliest start first: with three starts on two threads, the other two share a thread.
@@ -353,7 +361,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
       if (kept > win_kept) win = k, win_kept = kept;
     }
     if (win > 0) res.sweep_refits = runs[win].refits;
-    res.sweep_start = static_cast<int>(starts[win]);
+    res.sweep_start = starts[win];
     SweepRun& best = runs[win];
     for (std::size_t p = 0; p < pairs.size(); ++p) pairs[p].plane = best.planes[p];
     res.sweeps_run = best.sweeps;

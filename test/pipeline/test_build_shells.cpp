@@ -188,7 +188,7 @@ StarShells star_shells(int planks, double dz) {
   BOOST_TEST(s.three.certification.certified());
   BOOST_TEST(s.two.certification.certified());
   BOOST_TEST(s.three.overlapping_pairs == std::size_t(planks * (planks - 1) / 2));
-  BOOST_TEST(s.three.sweep_start == 2);
+  BOOST_TEST((s.three.sweep_start == SweepStart::constructive));
   BOOST_TEST(s.three.sweep_refits > 0u);
   BOOST_TEST(s.three.shells.size() == std::size_t(planks));
   BOOST_TEST_MESSAGE(planks << "-plank star: full " << s.three.volume_loss << " (" << s.three.shells.size()
@@ -203,7 +203,7 @@ BOOST_AUTO_TEST_CASE(crossing_planks_are_refitted_from_other_starts) {
   // kept 7; placing the planes pair by pair (constructive start) keeps all 8 and loses 42%.
   const StarShells s = star_shells(8, 0.01);
   BOOST_TEST(s.three.volume_loss < 0.45);
-  BOOST_TEST(s.two.sweep_start == 1);
+  BOOST_TEST((s.two.sweep_start == SweepStart::refit_reshaped));
   BOOST_TEST(s.two.shells.size() >= 7u);
   BOOST_TEST(s.two.volume_loss < 0.55);
   BOOST_TEST(s.three.volume_loss < s.two.volume_loss);
