@@ -73,7 +73,7 @@ std::string run_set(const fs::path& set, const std::string& group, int runs) {
   }
   if (group == "composite") {
     ShellOptions opt;
-    opt.global_sweeps = true;
+    opt.sweep.global_sweeps = true;
     variants.push_back({"full-global", opt});
   }
   for (const auto& [label, opt] : variants) {
@@ -163,9 +163,9 @@ std::string random_boxes_section(int sets, int runs, const std::string& only) {
   variants[0] = {"exact", {}};
   variants[0].opt.cut.method = CutMethod::exact;
   variants[1] = {"one start", {}};
-  variants[1].opt.second_start = false;
+  variants[1].opt.sweep.second_start = false;
   variants[2] = {"two starts", {}};
-  variants[2].opt.constructive_start = false;
+  variants[2].opt.sweep.constructive_start = false;
   variants[3] = {"full", {}};
   std::ostringstream md;
   char line[512];
@@ -202,7 +202,7 @@ std::string random_boxes_section(int sets, int runs, const std::string& only) {
     std::snprintf(line, sizeof line,
                   "| %s | %zu | %zu | %.3f%% (%zu) | %.3f%% (%zu) | %.3f%% (%zu) | %.3f%% (%zu) | %d | %.3f | %.3f | %.3f |\n",
                   name, parts.size(), r[3].overlapping_pairs, 100 * e, r[0].shells.size(), 100 * r[1].volume_loss,
-                  r[1].shells.size(), 100 * two, r[2].shells.size(), 100 * full, r[3].shells.size(), static_cast<int>(r[3].sweep_start),
+                  r[1].shells.size(), 100 * two, r[2].shells.size(), 100 * full, r[3].shells.size(), static_cast<int>(r[3].sweep.start),
                   t[1], t[2], t[3]);
     md << line;
   }

@@ -9,41 +9,16 @@
 #include "dcshell/cut_plane.h"
 #include "dcshell/fit_cut_plane.h"
 #include "dcshell/load_parts.h"
+#include "dcshell/refine_cut_planes.h"
 #include "dcshell/remesh.h"
 #include "dcshell/trim.h"
 
 namespace dcshell {
 
-/// The sweep starts of `full` (doc/shell.md, "Two starts", "Three starts").
-enum class SweepStart {
-  pairwise,        ///< the pairwise planes, polished
-  refit_reshaped,  ///< pairs whose hulls the other planes reshaped re-fitted from scratch first
-  constructive     ///< planes placed pair by pair against the hulls trimmed so far
-};
-/// "pairwise", "refit-reshaped", "constructive" (as in report.json).
-const char* to_string(SweepStart start);
-
 struct ShellOptions {
   CutOptions cut;  ///< method (default full), lambda, svm_c, seed
-  /// Maximum refinement sweeps: each re-optimises every pair's plane against the two hulls as
-  /// already trimmed by all their other planes, keeping a new plane only when it loses less.
-  /// Used by the volume-minimising methods (exact, full); lsf and svm are single-pass.
-  int max_sweeps = 6;
-  /// Sweeps re-fit a pair from scratch (true) or, for `full`, from its current plane with a
-  /// short scan (false, the default: several times faster; see doc/results.md for the losses).
-  bool global_sweeps = false;
-  /// With warm-started sweeps, where the other planes cut 30% or more off a pair's hulls, `full`
-  /// also runs a second start that re-fits those pairs from scratch in its first sweep, and keeps
-  /// whichever start leaves the shells more volume (doc/shell.md, "Two starts").
-  bool second_start = true;
-  /// Where the second start runs and the pairwise planes together cut a fifth or more off the
-  /// hulls, a third start places the planes pair by pair (larger hulls first), each fitted from
-  /// scratch against its hulls trimmed by the planes placed before it (doc/shell.md, "Three
-  /// starts"). Off: two starts at most.
-  bool constructive_start = true;
-  /// Sweeps stop once one gains less than this fraction of the hulls' total volume (each sweep
-  /// gains less than the one before, typically by a factor of 2 to 10).
-  double sweep_tolerance = 2e-6;
+  /// Refinement sweeps of the cut planes and their starts (refine_cut_planes.h).
+  SweepOptions sweep;
   /// A hull with at least this fraction of its volume inside one other hull is absorbed by it
   /// (no shell of its own; reported). Exactly nested and duplicated parts are absorbed too.
   double absorb_fraction = 0.99;
@@ -57,7 +32,7 @@ struct ShellOptions {
   /// ... and splits edges with lifted points where that makes the shells fatter (remesh.h).
   bool edge_splits = true;
   /// Called with (stage, done, total) as work proceeds.
-  std::function<void(const std::string&, std::size_t, std::size_t)> progress;
+  StageProgress progress;
 };
 
 struct ShellCut {
@@ -91,12 +66,7 @@ struct ShellResult {
   std::vector<AbsorbedPart> absorbed;
   std::vector<std::size_t> vanished;   ///< parts whose shell was cut away entirely
   std::size_t overlapping_pairs = 0;
-  int sweeps_run = 0;
-  /// Objective decrease of each sweep, as a fraction of the hulls' total volume.
-  std::vector<double> sweep_gains;
-  /// Pairs the winning start re-fitted from scratch (0 when the first start won or none ran).
-  std::size_t sweep_refits = 0;
-  SweepStart sweep_start = SweepStart::pairwise;  ///< the start whose planes were kept
+  SweepReport sweep;                   ///< what the refinement sweeps did
   double union_volume = 0.0;           ///< of the parts' original convex hulls (certified enclosure midpoint)
   double shells_volume = 0.0;
   double volume_loss = 0.0;            ///< (union - shells) / union, correctly signed (volume_loss.h)

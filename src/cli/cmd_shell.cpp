@@ -38,10 +38,10 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
       .field("svm_c", opt.cut.svm_c)
       .field("svm_samples", opt.cut.svm_samples)
       .field("seed", static_cast<std::int64_t>(opt.cut.seed))
-      .field("max_sweeps", opt.max_sweeps)
-      .field("global_sweeps", opt.global_sweeps)
-      .field("starts", opt.second_start ? opt.constructive_start ? 3 : 2 : 1)
-      .field("sweep_tolerance", opt.sweep_tolerance)
+      .field("max_sweeps", opt.sweep.max_sweeps)
+      .field("global_sweeps", opt.sweep.global_sweeps)
+      .field("starts", opt.sweep.second_start ? opt.sweep.constructive_start ? 3 : 2 : 1)
+      .field("sweep_tolerance", opt.sweep.tolerance)
       .field("absorb_fraction", opt.absorb_fraction)
       .field("simplify_iterations", opt.simplify_iterations)
       .field("max_volume_increase", opt.max_volume_increase)
@@ -107,10 +107,10 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
   }
   json.end_array();
   json.field("overlapping_pairs", r.overlapping_pairs)
-      .field("sweeps", r.sweeps_run)
-      .field("sweep_gains", r.sweep_gains)
-      .field("sweep_refits", r.sweep_refits)
-      .field("sweep_start", to_string(r.sweep_start))
+      .field("sweeps", r.sweep.sweeps)
+      .field("sweep_gains", r.sweep.gains)
+      .field("sweep_refits", r.sweep.refits)
+      .field("sweep_start", to_string(r.sweep.start))
       .field("union_volume", r.union_volume)
       .field("shells_volume", r.shells_volume)
       .field("volume_loss", r.volume_loss)
@@ -156,8 +156,8 @@ int run_shell(int argc, char** argv) {
         "svm-samples", po::value(&opt.cut.svm_samples)->default_value(opt.cut.svm_samples),
         "points sampled in the two hulls of a pair for the SVM (svm, exact, full)")(
         "seed", po::value(&seed)->default_value(1), "seed of every random choice")(
-        "sweeps", po::value(&opt.max_sweeps)->default_value(6), "maximum refinement sweeps (exact, full)")(
-        "sweep-tolerance", po::value(&opt.sweep_tolerance)->default_value(opt.sweep_tolerance),
+        "sweeps", po::value(&opt.sweep.max_sweeps)->default_value(6), "maximum refinement sweeps (exact, full)")(
+        "sweep-tolerance", po::value(&opt.sweep.tolerance)->default_value(opt.sweep.tolerance),
         "stop the sweeps once one gains less than this fraction of the hulls' volume")(
         "global-sweeps", "full: re-fit pairs from scratch in every sweep (slower, sometimes a little less loss)")(
         "starts", po::value(&starts)->default_value(3),
@@ -187,17 +187,17 @@ int run_shell(int argc, char** argv) {
     if (!(opt.cut.svm_c > 0) || !std::isfinite(opt.cut.svm_c)) throw InputError("--svm-c must be a finite number > 0");
     if (opt.cut.svm_samples < 32 || opt.cut.svm_samples > 10000000)
       throw InputError("--svm-samples must be in [32, 1e7]");
-    if (opt.max_sweeps < 0) throw InputError("--sweeps must be >= 0");
-    if (!(opt.sweep_tolerance >= 0) || !std::isfinite(opt.sweep_tolerance))
+    if (opt.sweep.max_sweeps < 0) throw InputError("--sweeps must be >= 0");
+    if (!(opt.sweep.tolerance >= 0) || !std::isfinite(opt.sweep.tolerance))
       throw InputError("--sweep-tolerance must be a finite number >= 0");
     if (!(opt.absorb_fraction > 0 && opt.absorb_fraction <= 1)) throw InputError("--absorb-fraction must be in (0, 1]");
     if (opt.simplify_iterations < 0) throw InputError("--simplify-iterations must be >= 0");
     if (!(opt.max_volume_increase >= 0) || !std::isfinite(opt.max_volume_increase))
       throw InputError("--max-volume-increase must be a finite number >= 0");
-    opt.global_sweeps = vm.count("global-sweeps") > 0;
+    opt.sweep.global_sweeps = vm.count("global-sweeps") > 0;
     if (starts < 1 || starts > 3) throw InputError("--starts must be 1, 2 or 3");
-    opt.second_start = starts >= 2;
-    opt.constructive_start = starts >= 3;
+    opt.sweep.second_start = starts >= 2;
+    opt.sweep.constructive_start = starts >= 3;
     const bool quiet = vm.count("quiet");
 
     std::vector<std::string> files = expand_inputs(inputs);

@@ -4,9 +4,6 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <limits>
-#include <map>
-#include <mutex>
 #include <numeric>
 
 #include "dcshell/convex_hull.h"
@@ -32,13 +29,6 @@ class StageClock {
  private:
   std::vector<StageTime>& out_;
   std::chrono::steady_clock::time_point t_;
-};
-
-struct Pair {
-  std::size_t i, j;          // part indices, i < j
-  const Overlap* overlap;    // C_i ∩ C_j
-  ConvexPolytope region;     // the same in doubles
-  CutPlane plane;            // part i keeps normal·x <= offset
 };
 
 // Parts whose hull lies (almost) entirely inside another's are absorbed by it. Smaller parts are
@@ -80,15 +70,6 @@ std::vector<AbsorbedPart> absorb_nested(const std::vector<Overlap>& overlaps, co
 }
 
 }  // namespace
-
-const char* to_string(SweepStart start) {
-  switch (start) {
-    case SweepStart::pairwise: break;
-    case SweepStart::refit_reshaped: return "refit-reshaped";
-    case SweepStart::constructive: return "constructive";
-  }
-  return "pairwise";
-}
 
 ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt) {
   ShellResult res;
@@ -137,236 +118,20 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   res.absorbed = absorb_nested(overlaps, vol, opt.absorb_fraction);
   std::vector<char> active(n, 1);
   for (const auto& a : res.absorbed) active[a.part] = 0;
-  std::vector<Pair> pairs;
+  std::vector<HullPair> pairs;
   for (const auto& o : overlaps)
-    if (active[o.i] && active[o.j]) pairs.push_back({o.i, o.j, &o, to_double(o.region), CutPlane{}});
+    if (active[o.i] && active[o.j]) pairs.push_back({o.i, o.j, to_double(o.region)});
   res.overlapping_pairs = pairs.size();
+  // An absorbed part takes part in no pair: the cut-plane stage sees its hull empty.
   std::vector<ConvexPolytope> hull_d(n);
-  for (std::size_t i = 0; i < n; ++i) hull_d[i] = to_double(hull[i]);
-  // Pair indices touching each part, for the interference terms and the sweeps.
-  std::vector<std::vector<std::size_t>> pairs_of(n);
-  for (std::size_t p = 0; p < pairs.size(); ++p) {
-    pairs_of[pairs[p].i].push_back(p);
-    pairs_of[pairs[p].j].push_back(p);
-  }
+  for (std::size_t i = 0; i < n; ++i)
+    if (active[i]) hull_d[i] = to_double(hull[i]);
   clock.lap("overlaps");
 
-  // --- cut planes, one per overlapping pair
-  auto other = [&](const Pair& p, std::size_t part) { return p.i == part ? p.j : p.i; };
-  auto oriented_for = [&](const Pair& p, std::size_t part) { return p.i == part ? p.plane : p.plane.flipped(); };
-  auto make_problem = [&](std::size_t p, ConvexPolytope a, ConvexPolytope b) {
-    CutProblem prob;
-    prob.a = std::move(a);
-    prob.b = std::move(b);
-    prob.overlap = pairs[p].region;
-    // Interference (Eq. 7): the regions each side shares with its other neighbours.
-    for (std::size_t q : pairs_of[pairs[p].i])
-      if (q != p) prob.interference_a.push_back(pairs[q].region);
-    for (std::size_t q : pairs_of[pairs[p].j])
-      if (q != p) prob.interference_b.push_back(pairs[q].region);
-    return prob;
-  };
-  auto pair_options = [&](std::size_t p) {
-    CutOptions c = opt.cut;
-    c.seed = opt.cut.seed * 1000003u + p;  // independent, reproducible streams per pair
-    return c;
-  };
-  {
-    // Each pair's fit reads only the hulls and the overlap regions and has its own seed: the
-    // pairs run side by side, with the same planes as one after the other.
-    std::mutex progress_lock;
-    std::size_t done = 0;
-    parallel_for(pairs.size(), [&](std::size_t p) {
-      pairs[p].plane = fit_cut_plane(make_problem(p, hull_d[pairs[p].i], hull_d[pairs[p].j]), pair_options(p)).plane;
-      std::lock_guard<std::mutex> guard(progress_lock);
-      progress("cut planes", ++done, pairs.size());
-    });
-  }
+  // --- cut planes, one per overlapping pair, then the refinement sweeps
+  std::vector<CutPlane> planes = fit_pair_planes(hull_d, pairs, opt.cut, opt.progress);
   clock.lap("cut planes");
-
-  // --- refinement sweeps: independently optimal planes over-trim where 3+ hulls meet
-  const bool volume_driven = opt.cut.method == CutMethod::exact || opt.cut.method == CutMethod::full;
-  if (volume_driven) {
-    double scale = 0;
-    for (std::size_t i = 0; i < n; ++i) scale += active[i] ? vol[i] : 0;
-    auto oriented = [&](const std::vector<CutPlane>& planes, std::size_t q, std::size_t part) {
-      return pairs[q].i == part ? planes[q] : planes[q].flipped();
-    };
-    // The part's hull clipped by its planes other than `skip` (and, while a start places its
-    // planes one by one, only by those already placed).
-    auto trimmed_except = [&](const std::vector<CutPlane>& planes, std::size_t part, std::size_t skip,
-                              const std::vector<char>* placed = nullptr) {
-      ConvexPolytope c = hull_d[part];
-      for (std::size_t q : pairs_of[part])
-        if (q != skip && (!placed || (*placed)[q]) && !c.empty()) c = clip(c, oriented(planes, q, part), -2);
-      return c;
-    };
-    struct SweepRun {
-      std::vector<CutPlane> planes;
-      int sweeps = 0;
-      std::vector<double> gains;
-      std::size_t refits = 0;  // pairs re-fitted from scratch
-    };
-    // A hull that the other planes have cut by more than this fraction no longer resembles the
-    // one its pairwise plane was fitted to; polishing that plane can stay in the wrong basin.
-    constexpr double kReshaped = 0.3;
-    // Runs f(p) for the pairs in `order` as if one after the other, but side by side where
-    // that cannot change anything: f(p) reads and writes only the planes (and the per-part
-    // state) of p's two parts, so p must wait only for the pairs before it that share a part.
-    // Each pair goes into the first wave after all of those; a wave's pairs share no part.
-    auto in_waves = [&](const std::vector<std::size_t>& order, const std::function<void(std::size_t)>& f,
-                        const std::function<void(std::size_t)>& done = {}) {
-      std::vector<std::vector<std::size_t>> waves;
-      std::vector<std::size_t> last(n, 0);  // per part: 1 + the wave of its latest pair so far
-      for (std::size_t p : order) {
-        const std::size_t w = std::max(last[pairs[p].i], last[pairs[p].j]);
-        if (waves.size() <= w) waves.resize(w + 1);
-        waves[w].push_back(p);
-        last[pairs[p].i] = last[pairs[p].j] = w + 1;
-      }
-      std::size_t count = 0;
-      for (const auto& wave : waves) {
-        parallel_for(wave.size(), [&](std::size_t k) { f(wave[k]); });
-        if (done) done(count += wave.size());
-      }
-    };
-    std::vector<std::size_t> index_order(pairs.size());
-    std::iota(index_order.begin(), index_order.end(), 0);
-    auto run_sweeps = [&](std::vector<CutPlane> planes, SweepStart start) {
-      SweepRun run;
-      const bool refit_reshaped = start == SweepStart::refit_reshaped;
-      if (start == SweepStart::constructive) {
-        // Planes placed one pair at a time, each fitted from scratch against its two hulls as
-        // trimmed by the planes placed before it: a part's later planes then keep the side its
-        // earlier ones kept, where independent pairwise planes may each keep another side
-        // (many hulls through one region; doc/shell.md, "Three starts").
-        std::vector<char> placed(pairs.size(), 0), trimmed(n, 0), fitted(pairs.size(), 0);
-        // The larger hulls' pairs first: the smaller hulls then fit around their planes.
-        std::vector<std::size_t> order = index_order;
-        auto larger = [&](std::size_t q) { return std::max(vol[pairs[q].i], vol[pairs[q].j]); };
-        std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return larger(x) > larger(y); });
-        in_waves(order, [&](std::size_t p) {
-          const std::size_t i = pairs[p].i, j = pairs[p].j;
-          if (trimmed[i] || trimmed[j]) {
-            ConvexPolytope a = trimmed_except(planes, i, p, &placed), b = trimmed_except(planes, j, p, &placed);
-            if (!a.empty() && !b.empty()) {
-              // Even a hull the placed planes barely trimmed gets a new fit: between two equal
-              // hulls, that trim is what decides which one the plane cuts.
-              planes[p] = fit_cut_plane(make_problem(p, std::move(a), std::move(b)), pair_options(p)).plane;
-              fitted[p] = 1;
-            } else if (!a.empty() || !b.empty()) {
-              // One side is gone already: the plane keeps the whole overlap for the other.
-              const Eigen::Vector3d nrm = planes[p].normal;
-              double lo = std::numeric_limits<double>::infinity(), hi = -lo;
-              for (const auto& v : pairs[p].region.vertices) lo = std::min(lo, nrm.dot(v)), hi = std::max(hi, nrm.dot(v));
-              if (lo <= hi) planes[p].offset = a.empty() ? lo : hi;
-            }
-          }  // else both hulls are still whole: the pairwise plane is that fit already
-          placed[p] = 1;
-          trimmed[i] = trimmed[j] = 1;
-        });
-        run.refits = static_cast<std::size_t>(std::count(fitted.begin(), fitted.end(), 1));
-      }
-      // A pair's refit depends only on the planes of its two parts: skip it while none of them
-      // changed since its last fit (the fit is deterministic, so the answer would be the same).
-      std::vector<std::size_t> version(n, 0);
-      std::vector<std::pair<std::size_t, std::size_t>> fitted_at(pairs.size(),
-                                                                   {~std::size_t(0), ~std::size_t(0)});
-      for (int s = 0; s < opt.max_sweeps; ++s) {
-        // Per pair, summed in pair order afterwards: the same bits as one pair after the other.
-        std::vector<double> pair_gain(pairs.size(), 0.0);
-        std::vector<char> refit(pairs.size(), 0);
-        const std::string stage = "sweep " + std::to_string(s + 1);
-        in_waves(index_order, [&](std::size_t p) {
-          const std::size_t i = pairs[p].i, j = pairs[p].j;
-          if (pairs_of[i].size() + pairs_of[j].size() <= 2) return;  // nothing else trims them
-          const std::pair<std::size_t, std::size_t> now{version[i], version[j]};
-          if (fitted_at[p] == now) return;
-          fitted_at[p] = now;
-          ConvexPolytope a = trimmed_except(planes, i, p), b = trimmed_except(planes, j, p);
-          if (a.empty() || b.empty()) return;
-          const bool reshaped = s == 0 && (volume(a) < (1 - kReshaped) * vol[i] ||
-                                           volume(b) < (1 - kReshaped) * vol[j]);
-          CutProblem prob = make_problem(p, std::move(a), std::move(b));
-          prob.current_overlap = tagged_intersection(prob.a, prob.b);  // once for both calls
-          CutResult cur = evaluate_cut_plane(prob, planes[p], opt.cut.lambda);
-          CutOptions o = pair_options(p);
-          const bool from_scratch = opt.global_sweeps || (refit_reshaped && reshaped);
-          if (!from_scratch) o.warm_start = planes[p];
-          refit[p] = refit_reshaped && reshaped;
-          CutResult cand = fit_cut_plane(prob, o);
-          if (cand.objective < cur.objective - 1e-12 * scale) {
-            pair_gain[p] = cur.objective - cand.objective;
-            planes[p] = cand.plane;
-            ++version[i];
-            ++version[j];
-            fitted_at[p] = {version[i], version[j]};
-          }
-        }, [&](std::size_t done) {
-          if (start == SweepStart::pairwise) progress(stage, done, pairs.size());  // one start reports
-        });
-        double gain = 0;
-        for (double g : pair_gain) gain += g;
-        run.refits += static_cast<std::size_t>(std::count(refit.begin(), refit.end(), 1));
-        run.sweeps = s + 1;
-        run.gains.push_back(scale > 0 ? gain / scale : 0.0);
-        if (gain <= opt.sweep_tolerance * scale) break;
-      }
-      run.planes = std::move(planes);
-      return run;
-    };
-    // What the shells keep: each hull clipped by all its planes.
-    auto kept_volume = [&](const std::vector<CutPlane>& planes) {
-      double v = 0;
-      for (std::size_t i = 0; i < n; ++i)
-        if (active[i]) v += volume(trimmed_except(planes, i, pairs.size()));
-      return v;
-    };
-    std::vector<CutPlane> initial(pairs.size());
-    for (std::size_t p = 0; p < pairs.size(); ++p) initial[p] = pairs[p].plane;
-    // Warm-started polishing keeps each plane near its pairwise fit. Where the other planes
-    // reshape a pair's hulls, a second start re-fits those pairs from scratch in its first
-    // sweep; the start that keeps more volume wins (doc/shell.md, "Two starts"). The starts are
-    // independent, so they run side by side.
-    bool two_starts = false;
-    if (opt.second_start && opt.cut.method == CutMethod::full && !opt.global_sweeps)
-      for (std::size_t p = 0; p < pairs.size() && !two_starts; ++p)
-        for (std::size_t part : {pairs[p].i, pairs[p].j})
-          if (pairs_of[part].size() > 1 && volume(trimmed_except(initial, part, p)) < (1 - kReshaped) * vol[part])
-            two_starts = true;
-    std::vector<SweepStart> starts = {SweepStart::pairwise};
-    if (two_starts) starts.push_back(SweepStart::refit_reshaped);
-    // The constructive start costs a from-scratch fit per pair, in waves; it runs where the
-    // pairwise planes together cut a fifth or more off the hulls (the shared composite models
-    // and ACD sets: 0.1-14%, where it changed no loss by more than 0.003 points; the random boxes
-    // of doc/results.md: 8-57%; plank stars: 77-97%).
-    constexpr double kConstructive = 0.2;
-    if (two_starts && opt.constructive_start) {
-      double cut = 0, total = 0;
-      for (std::size_t i = 0; i < n; ++i)
-        if (active[i]) cut += vol[i] - volume(trimmed_except(initial, i, pairs.size())), total += vol[i];
-      if (cut >= kConstructive * total) starts.push_back(SweepStart::constructive);
-    }
-    std::vector<SweepRun> runs(starts.size());
-    // The costliest start first: with three starts on two threads, the other two share a thread.
-    parallel_for(runs.size(), [&](std::size_t k) {
-      const std::size_t r = runs.size() - 1 - k;
-      runs[r] = run_sweeps(initial, starts[r]);
-    });
-    std::size_t win = 0;
-    double win_kept = kept_volume(runs[0].planes);
-    for (std::size_t k = 1; k < runs.size(); ++k) {
-      if (runs[k].refits == 0) continue;  // the same planes as the first start
-      const double kept = kept_volume(runs[k].planes);
-      if (kept > win_kept) win = k, win_kept = kept;
-    }
-    if (win > 0) res.sweep_refits = runs[win].refits;
-    res.sweep_start = starts[win];
-    SweepRun& best = runs[win];
-    for (std::size_t p = 0; p < pairs.size(); ++p) pairs[p].plane = best.planes[p];
-    res.sweeps_run = best.sweeps;
-    res.sweep_gains = best.gains;
-  }
+  planes = refine_cut_planes(hull_d, pairs, std::move(planes), opt.cut, opt.sweep, &res.sweep, opt.progress);
   clock.lap("sweeps");
 
   // --- exact trim and certified rounding
@@ -376,8 +141,10 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     Shell sh;
     sh.part = i;
     std::vector<CutPlane> keep;
-    for (std::size_t q : pairs_of[i]) {
-      sh.cuts.push_back({oriented_for(pairs[q], i), other(pairs[q], i)});
+    for (std::size_t q = 0; q < pairs.size(); ++q) {
+      if (pairs[q].i == i) sh.cuts.push_back({planes[q], pairs[q].j});
+      else if (pairs[q].j == i) sh.cuts.push_back({planes[q].flipped(), pairs[q].i});
+      else continue;
       keep.push_back(sh.cuts.back().plane);
     }
     sh.mesh = trim_shell(hull[i], keep, &sh.trim);

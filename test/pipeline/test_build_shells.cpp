@@ -183,13 +183,13 @@ struct StarShells {
 StarShells star_shells(int planks, double dz) {
   const std::vector<Part> parts = synthetic::plank_star(planks, dz);
   ShellOptions two;
-  two.constructive_start = false;
+  two.sweep.constructive_start = false;
   StarShells s{build_shells(parts, ShellOptions{}), build_shells(parts, two)};
   BOOST_TEST(s.three.certification.certified());
   BOOST_TEST(s.two.certification.certified());
   BOOST_TEST(s.three.overlapping_pairs == std::size_t(planks * (planks - 1) / 2));
-  BOOST_TEST((s.three.sweep_start == SweepStart::constructive));
-  BOOST_TEST(s.three.sweep_refits > 0u);
+  BOOST_TEST((s.three.sweep.start == SweepStart::constructive));
+  BOOST_TEST(s.three.sweep.refits > 0u);
   BOOST_TEST(s.three.shells.size() == std::size_t(planks));
   BOOST_TEST_MESSAGE(planks << "-plank star: full " << s.three.volume_loss << " (" << s.three.shells.size()
                             << " shells), two starts " << s.two.volume_loss << " (" << s.two.shells.size() << ")");
@@ -203,18 +203,18 @@ BOOST_AUTO_TEST_CASE(crossing_planks_are_refitted_from_other_starts) {
   // kept 7; placing the planes pair by pair (constructive start) keeps all 8 and loses 42%.
   const StarShells s = star_shells(8, 0.01);
   BOOST_TEST(s.three.volume_loss < 0.45);
-  BOOST_TEST((s.two.sweep_start == SweepStart::refit_reshaped));
+  BOOST_TEST((s.two.sweep.start == SweepStart::refit_reshaped));
   BOOST_TEST(s.two.shells.size() >= 7u);
   BOOST_TEST(s.two.volume_loss < 0.55);
   BOOST_TEST(s.three.volume_loss < s.two.volume_loss);
   // Only `full` polishes warm-started planes, so only it runs further starts.
   ShellOptions exact;
   exact.cut.method = CutMethod::exact;
-  BOOST_TEST(build_shells(synthetic::plank_star(8, 0.01), exact).sweep_refits == 0u);
+  BOOST_TEST(build_shells(synthetic::plank_star(8, 0.01), exact).sweep.refits == 0u);
   // The starts run side by side; the result must not depend on which thread finished first.
   const ShellResult again = build_shells(synthetic::plank_star(8, 0.01), ShellOptions{});
   BOOST_TEST(again.volume_loss == s.three.volume_loss);
-  BOOST_TEST(again.sweep_refits == s.three.sweep_refits);
+  BOOST_TEST(again.sweep.refits == s.three.sweep.refits);
 }
 
 BOOST_AUTO_TEST_CASE(a_deep_plank_star_keeps_every_plank) {
