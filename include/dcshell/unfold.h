@@ -61,6 +61,14 @@ struct UnfoldOptions {
   /// Only nets whose objective is within this fraction of the best overlap-free net's are
   /// checked: a verified fold is worth that much longer cuts (or larger hull), no more.
   double fold_slack = 0.25;
+  /// When no net within fold_slack verifies, the nets within this wider slack are checked too,
+  /// with what the first pass left of its budget (it may have stopped at fold_candidates) plus
+  /// fold_fallback_work (scaled like fold_work), and fold_candidates more checks: a net that
+  /// folds is worth a longer cut then. At or below fold_slack: no fallback. The extra budget is
+  /// a tenth of fold_work: on the shared sets that recovers the nets that fold (doc/unfold.md)
+  /// without doubling the time of shells whose nets never do.
+  double fold_fallback_slack = 3.0;
+  long long fold_fallback_work = 50000;
 };
 
 /// Features of a net, each in model units.
@@ -85,6 +93,7 @@ struct UnfoldStats {
   NetMetrics result;            ///< the returned net
   FoldCheckResult fold;         ///< folding check of the returned net (not run: verified=false, steps=0)
   int fold_checks = 0;          ///< nets whose folding was checked
+  bool fold_fallback = false;   ///< the returned net verified only within fold_fallback_slack
   double seconds = 0;
 };
 

@@ -147,7 +147,7 @@ int run_unfold(int argc, char** argv) {
     std::string heuristic = "best", objective = "hull-area", out, format = "svg", paper = "a4", motion;
     std::uint64_t seed = 1;
     int tries = 0, ga_evaluations = 0, frames = 31;
-    double scale = 0, fold_slack = 0;
+    double scale = 0, fold_slack = 0, fold_fallback_slack = 0;
     long long fold_work = 0;
     opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (created atomically)")(
         "no-timings", "leave times out of unfold.json (byte-identical reruns)")(
@@ -167,6 +167,8 @@ int run_unfold(int argc, char** argv) {
         "motion-frames", po::value(&frames)->default_value(31), "frames of the motion (>= 2)")(
         "fold-slack", po::value(&fold_slack)->default_value(UnfoldOptions{}.fold_slack),
         "check the folding of nets up to this fraction worse (objective) than the best; 0: the best only")(
+        "fold-fallback-slack", po::value(&fold_fallback_slack)->default_value(UnfoldOptions{}.fold_fallback_slack),
+        "when no net within --fold-slack folds, check nets up to this fraction worse, with a second budget (<= --fold-slack: no fallback)")(
         "fold-work", po::value(&fold_work)->default_value(UnfoldOptions{}.fold_work),
         "work budget of the folding checks per 200 faces of a shell, at most 3x this per shell (pieces placed; a count, not a time)");
     std::vector<std::string> inputs;
@@ -187,7 +189,10 @@ int run_unfold(int argc, char** argv) {
     uo.tries = tries;
     if (!(fold_slack >= 0) || !std::isfinite(fold_slack)) throw InputError("--fold-slack must be a finite number >= 0");
     if (fold_work < 0) throw InputError("--fold-work must be >= 0");
+    if (!(fold_fallback_slack >= 0) || !std::isfinite(fold_fallback_slack))
+      throw InputError("--fold-fallback-slack must be a finite number >= 0");
     uo.fold_slack = fold_slack;
+    uo.fold_fallback_slack = fold_fallback_slack;
     uo.fold_work = fold_work;
     if (out.empty()) throw InputError("--out DIR is required (see 'dcshell unfold --help')");
     if (inputs.empty()) throw InputError("no input shells (see 'dcshell unfold --help')");
@@ -291,6 +296,7 @@ int run_unfold(int argc, char** argv) {
         json.field("overlap_free", s.stats.result.overlapping_pairs == 0)
             .field("overlapping_pairs", s.stats.result.overlapping_pairs);
         json.field("fold_path_verified", s.fold.verified).field("fold_check_steps", s.fold.steps);
+        json.field("fold_fallback", s.stats.fold_fallback);
         if (!s.fold.verified) json.field("fold_check_t", s.fold.t).field("fold_check_problem", s.fold.message);
         json.key("first_net").begin_object();
         json.field("cut_length", s.stats.first.cut_length).field("hull_area", s.stats.first.hull_area);

@@ -584,7 +584,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     double best_score = std::numeric_limits<double>::infinity();
     for (const auto& c : ranked)
       if (c.metrics.overlapping_pairs == 0) best_score = std::min(best_score, objective_score(c.metrics, ref, options.objective));
-    const double max_score = best_score * (1 + std::max(options.fold_slack, 0.0));
+    double max_score = best_score * (1 + std::max(options.fold_slack, 0.0));
     auto within_slack = [&](const NetMetrics& m) {
       return m.overlapping_pairs == 0 && objective_score(m, ref, options.objective) <= max_score;
     };
@@ -628,9 +628,19 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     bool done = false;
     const long long first_work = scaled_fold_work(options.fold_first_work, g.F.size());
     auto first_budget = [&] { return std::min(first_work, work); };
+    // Overlap-free nets left out for the slack, with their scores: the fallback's first candidates.
+    struct Spare {
+      Genome genome;
+      std::string heuristic;
+      double score;
+    };
+    std::vector<Spare> spare;
     for (std::size_t i = 0; i < ranked.size() && !done && st.fold_checks < checks && work > 0; ++i) {
       if (ranked[i].metrics.overlapping_pairs != 0) break;
-      if (have && !within_slack(ranked[i].metrics)) continue;
+      if (have && !within_slack(ranked[i].metrics)) {
+        spare.push_back({ranked[i].genome, ranked[i].heuristic, objective_score(ranked[i].metrics, ref, options.objective)});
+        continue;
+      }
       done = check(ranked[i].genome, ranked[i].heuristic, first_budget(), true);
     }
     // Fresh trees: attempt numbers past the search's, every heuristic in turn (only the ones
@@ -638,22 +648,48 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     const auto preferred = preferred_directions(g);
     const std::vector<UnfoldHeuristic> hs = {UnfoldHeuristic::steepest, UnfoldHeuristic::flat,
                                              UnfoldHeuristic::min_perimeter, UnfoldHeuristic::random};
-    for (int attempt = 1; !done && st.fold_checks < checks && work > 0 && attempt <= 4 * checks; ++attempt)
-      for (auto h : hs) {
-        if (done || st.fold_checks >= checks || work <= 0) break;
-        Genome w = heuristic_genome(g, h, attempt, options.seed, preferred);
-        auto folded = folded_groups(g, w);
-        if (!seen.insert(tree_hash(folded)).second) continue;
-        NetMetrics m = sg.evaluate(folded);
-        work -= 8 + sg.faces();
-        if (!within_slack(m)) continue;
-        st.attempts++;
-        done = check(w, to_string(h), first_budget(), true);
-      }
+    int attempt = 1;
+    auto fresh_trees = [&](int max_checks) {
+      for (; !done && st.fold_checks < max_checks && work > 0 && attempt <= 4 * max_checks; ++attempt)
+        for (auto h : hs) {
+          if (done || st.fold_checks >= max_checks || work <= 0) break;
+          Genome w = heuristic_genome(g, h, attempt, options.seed, preferred);
+          auto folded = folded_groups(g, w);
+          if (!seen.insert(tree_hash(folded)).second) continue;
+          NetMetrics m = sg.evaluate(folded);
+          work -= 8 + sg.faces();
+          if (!within_slack(m)) {
+            if (m.overlapping_pairs == 0) spare.push_back({std::move(w), to_string(h), objective_score(m, ref, options.objective)});
+            continue;
+          }
+          st.attempts++;
+          done = check(w, to_string(h), first_budget(), true);
+        }
+    };
     // Undecided nets, the one that got furthest first, with what is left.
-    std::stable_sort(deferred.begin(), deferred.end(), [](const Deferred& a, const Deferred& b) { return a.t > b.t; });
-    for (std::size_t i = 0; i < deferred.size() && !done && work > 0; ++i)
-      done = check(deferred[i].genome, deferred[i].heuristic, work, false);
+    auto recheck_deferred = [&] {
+      std::stable_sort(deferred.begin(), deferred.end(), [](const Deferred& a, const Deferred& b) { return a.t > b.t; });
+      for (std::size_t i = 0; i < deferred.size() && !done && work > 0; ++i)
+        done = check(deferred[i].genome, deferred[i].heuristic, work, false);
+      deferred.clear();
+    };
+    fresh_trees(checks);
+    recheck_deferred();
+    // Fallback: no net within the slack folds. A net whose straight-line folding is proved beats
+    // a better-scored one that collides, so the nets up to the wider fallback slack get what is
+    // left of the budget plus a small one of their own, and as many checks again (the nets the
+    // slack left out first, in score order, then fresh trees).
+    if (!done && options.fold_fallback_slack > options.fold_slack) {
+      max_score = best_score * (1 + options.fold_fallback_slack);
+      work = std::max(work, 0LL) + scaled_fold_work(options.fold_fallback_work, g.F.size());
+      std::stable_sort(spare.begin(), spare.end(), [](const Spare& a, const Spare& b) { return a.score < b.score; });
+      const int max_checks = st.fold_checks + checks;
+      for (std::size_t i = 0; i < spare.size() && !done && st.fold_checks < max_checks && work > 0; ++i)
+        if (spare[i].score <= max_score) done = check(spare[i].genome, spare[i].heuristic, first_budget(), true);
+      fresh_trees(max_checks);
+      recheck_deferred();
+      st.fold_fallback = done;
+    }
     // No net verified and the one returned was refuted by a sampled state: its first contact,
     // for the report, unless that check runs out (then the sampled collision stands).
     if (!done && fold_sampled) {

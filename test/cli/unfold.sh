@@ -54,6 +54,7 @@ for f in net_000.obj net_001.obj nets.svg unfold.json; do [ -s "$T/out/$f" ] || 
 grep '^v ' "$T/out/net_000.obj" | awk '$4 != 0 { exit 1 }' || fail "net not flat"
 grep -q '"overlap_free": true' "$T/out/unfold.json" || fail "json overlap_free"
 grep -q '"fold_path_verified": true' "$T/out/unfold.json" || fail "json fold_path_verified"
+grep -q '"fold_fallback": false' "$T/out/unfold.json" || fail "json fold_fallback (the cube's best net folds)"
 grep -q '"cut_length": 7[,.]' "$T/out/unfold.json" || grep -q '"cut_length": 7$' "$T/out/unfold.json" || fail "cube cut length 7"
 
 # Reproducible: same bytes for the same seed.
@@ -105,6 +106,9 @@ expect_2 "missing file" --out "$T/bad2" "$T/nope.obj"
 expect_2 "bad heuristic" --heuristic best-ever --out "$T/bad3" "$T/cube.obj"
 expect_2 "bad paper" --paper a9000 --out "$T/bad4" "$T/cube.obj"
 expect_2 "no --out" "$T/cube.obj"
+expect_2 "negative fallback slack" --fold-fallback-slack -1 --out "$T/bad5" "$T/cube.obj"
+grep -q -- "--fold-fallback-slack" "$T/err.txt" || fail "fallback slack error does not name the option"
+[ ! -e "$T/bad5" ] || fail "output written for a bad option"
 expect_2 "existing output" --out "$T/out" "$T/cube.obj"
 [ -s "$T/out/net_001.obj" ] || fail "existing output touched"
 expect_2 "output over an input" --force --out "$T" "$T/cube.obj"
