@@ -43,7 +43,6 @@ double time_union(int runs, const std::vector<Part>& parts, UnionMethod method, 
   });
 }
 
-
 const char* kHeader =
     "| set | parts | check (median s) | overlapping pairs | union volume (median s) | method, terms | deepest overlap met | "
     "nerve only (s, terms) | decomposition only (s, pieces) |\n|---|---|---|---|---|---|---|---|---|\n";

@@ -93,6 +93,17 @@ ExactPolytope exact_hull(const std::vector<Point3>& points, int tag) {
 
 namespace {
 
+using Interval = CGAL::Interval_nt<false>;
+
+// h's coefficients as intervals, evaluated at interval points (a vertex's approximation, or a
+// box). The caller holds a rounding guard (CGAL::Protect_FPU_rounding) while evaluating.
+struct IntervalPlane {
+  Interval a, b, c, d;
+  explicit IntervalPlane(const EPlane& h)
+      : a(CGAL::approx(h.a())), b(CGAL::approx(h.b())), c(CGAL::approx(h.c())), d(CGAL::approx(h.d())) {}
+  Interval at(const Interval& x, const Interval& y, const Interval& z) const { return a * x + b * y + c * z + d; }
+};
+
 // Side of every vertex of p with respect to h: interval approximations under one rounding
 // guard, the exact predicate only where they do not decide.
 struct VertexSides {
@@ -106,10 +117,10 @@ VertexSides vertex_sides(const ExactPolytope& p, const EPlane& h) {
   std::vector<std::size_t> undecided;
   {
     CGAL::Protect_FPU_rounding<true> guard;
-    const auto a = CGAL::approx(h.a()), b = CGAL::approx(h.b()), c = CGAL::approx(h.c()), d = CGAL::approx(h.d());
+    const IntervalPlane plane(h);
     for (std::size_t i = 0; i < n; ++i) {
       const auto& q = CGAL::approx(p.vertices[i]);
-      const auto v = a * q.x() + b * q.y() + c * q.z() + d;
+      const Interval v = plane.at(q.x(), q.y(), q.z());
       if (v.inf() > 0) r.s[i] = CGAL::ON_POSITIVE_SIDE;
       else if (v.sup() < 0) r.s[i] = CGAL::ON_NEGATIVE_SIDE;
       else undecided.push_back(i);
@@ -135,12 +146,14 @@ ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::v
     int face;
   };
   std::vector<Crossed> crossed;
+  auto crosses = [&](int u, int v) {  // strictly opposite sides
+    return s[u] != CGAL::ON_ORIENTED_BOUNDARY && s[v] != CGAL::ON_ORIENTED_BOUNDARY && s[u] != s[v];
+  };
   for (int f = 0; f < int(p.faces.size()); ++f) {
     const auto& L = p.faces[f].loop;
     for (std::size_t k = 0; k < L.size(); ++k) {
       const int u = L[k], v = L[(k + 1) % L.size()];
-      if (s[u] != CGAL::ON_ORIENTED_BOUNDARY && s[v] != CGAL::ON_ORIENTED_BOUNDARY && s[u] != s[v])
-        crossed.push_back({edge_key(u, v), f});
+      if (crosses(u, v)) crossed.push_back({edge_key(u, v), f});
     }
   }
   std::sort(crossed.begin(), crossed.end(), [](const Crossed& x, const Crossed& y) { return x.key < y.key; });
@@ -185,9 +198,7 @@ ExactPolytope cut(const ExactPolytope& p, const EPlane& h, int tag, const std::v
         on_h[iu] = s[u] == CGAL::ON_ORIENTED_BOUNDARY;
         loop.push_back(iu);
       }
-      bool crosses = (s[u] == CGAL::ON_NEGATIVE_SIDE && s[v] == CGAL::ON_POSITIVE_SIDE) ||
-                     (s[u] == CGAL::ON_POSITIVE_SIDE && s[v] == CGAL::ON_NEGATIVE_SIDE);
-      if (crosses) {
+      if (crosses(u, v)) {
         const std::size_t here = find(u, v);
         int idx = new_vertex[here];
         if (idx < 0) {
@@ -243,13 +254,13 @@ namespace {
 
 // Conservative box of a polytope's vertices, from their interval approximations.
 struct IntervalBox {
-  CGAL::Interval_nt<false> x, y, z;
+  Interval x, y, z;
 };
 IntervalBox interval_box(const ExactPolytope& p) {
   double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
   for (const auto& v : p.vertices) {
     const auto& q = CGAL::approx(v);  // the interval point: no lazy number per coordinate
-    const CGAL::Interval_nt<false> c[3] = {q.x(), q.y(), q.z()};
+    const Interval c[3] = {q.x(), q.y(), q.z()};
     for (int d = 0; d < 3; ++d) {
       lo[d] = std::min(lo[d], c[d].inf());
       hi[d] = std::max(hi[d], c[d].sup());
@@ -261,8 +272,7 @@ IntervalBox interval_box(const ExactPolytope& p) {
 // True when the whole box is certainly strictly below h: clipping by h then changes nothing.
 bool box_strictly_below(const IntervalBox& b, const EPlane& h) {
   CGAL::Protect_FPU_rounding<true> guard;
-  const auto v = CGAL::approx(h.a()) * b.x + CGAL::approx(h.b()) * b.y + CGAL::approx(h.c()) * b.z + CGAL::approx(h.d());
-  return v.sup() < 0;
+  return IntervalPlane(h).at(b.x, b.y, b.z).sup() < 0;
 }
 
 }  // namespace
