@@ -1,5 +1,5 @@
 // Benchmark of the continuous folding check (issue 5, fold_check.h). For every convex model of
-// DATA/convex and for every net of each DATA/composite model (the convex hull of each part, and
+// DATA/convex and for every net of each DATA/composite model and DATA/acd set (the convex hull of each part, and
 // each DC-shell built from the parts), it unfolds once (untimed, without the unfolder's own fold
 // checks) and times check_folding on the net: median of --repeat runs. Per composite model it
 // also times the whole "unfold + fold check" of all its shells, and unfolding them as `dcshell
@@ -10,6 +10,7 @@
 // (parallel_for, one shell per item, as `dcshell unfold` does); default 1, sequential.
 //
 // usage: bench_fold [--data DIR] [--out FILE] [--repeat N] [--max-faces N] [--only NAME] [--no-shells] [--threads N]
+//                   [--fold-fallback-slack F]
 #include <boost/program_options.hpp>
 #include <algorithm>
 
@@ -81,12 +82,15 @@ std::vector<std::string> mesh_files(const fs::path& dir) {
 int main(int argc, char** argv) {
   std::string data = "../shared/data", out, only;
   int repeat = 5, max_faces = 1 << 30, threads = 1;
+  UnfoldOptions selection;  // the "selected" columns: as `dcshell unfold` with default options
   po::options_description opts("bench_fold options");
   opts.add_options()("help,h", "help")("data", po::value(&data), "shared data directory")(
       "out", po::value(&out), "Markdown report file (default stdout)")("repeat", po::value(&repeat), "runs per timing (median)")(
       "max-faces", po::value(&max_faces), "skip larger convex models")("only", po::value(&only), "only inputs whose name contains this")(
       "no-shells", "composite models: hull nets only (skip building DC-shells)")(
-      "threads", po::value(&threads), "threads for the unfold+fold timing of all shells of a model (1 = sequential)");
+      "threads", po::value(&threads), "threads for the unfold+fold timing of all shells of a model (1 = sequential)")(
+      "fold-fallback-slack", po::value(&selection.fold_fallback_slack),
+      "the selected columns: fallback slack of the fold selection (0: none; default as dcshell unfold)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (!fs::is_directory(data)) {
@@ -118,13 +122,19 @@ int main(int argc, char** argv) {
     md << "\n";
   }
 
-  fs::path comp = fs::path(data) / "composite";
-  if (fs::is_directory(comp)) {
-    std::vector<std::string> models;
-    for (auto& e : fs::directory_iterator(comp)) models.push_back(e.path().filename().string());
-    std::sort(models.begin(), models.end());
+  // The composite models, then the ACD outputs (each hull a part), as "composite/NAME" paths.
+  std::vector<std::string> models;
+  for (const char* kind : {"composite", "acd"}) {
+    const fs::path dir = fs::path(data) / kind;
+    if (!fs::is_directory(dir)) continue;
+    std::vector<std::string> names;
+    for (auto& e : fs::directory_iterator(dir)) names.push_back(e.path().filename().string());
+    std::sort(names.begin(), names.end());
+    for (auto& n : names) models.push_back(std::string(kind) + "/" + n);
+  }
+  if (!models.empty()) {
     std::ostringstream summary, detail;
-    summary << "## Composite models\n\nPer model: all nets of the part hulls and of the DC-shells (default options). "
+    summary << "## Composite models and ACD sets\n\nPer model: all nets of the part hulls and of the DC-shells (default options). "
                "`fold s` sums the fold-check medians; `unfold+fold s` is the median of unfolding and checking all shells "
                "(the issue's target: < 0.1 s per model; threads: " << threads << "). The last two columns are what "
                "`dcshell unfold` does (default options: it checks candidate nets until one verifies): its nets verified and "
@@ -134,7 +144,7 @@ int main(int argc, char** argv) {
     for (auto& m : models) {
       if (!only.empty() && m.find(only) == std::string::npos) continue;
       std::vector<std::string> warnings;
-      auto parts = load_parts({(comp / m).string()}, warnings);
+      auto parts = load_parts({(fs::path(data) / m).string()}, warnings);
       std::vector<std::pair<std::string, std::vector<Mesh>>> sets;
       std::vector<Mesh> hulls;
       for (auto& p : parts) {
@@ -172,7 +182,7 @@ int main(int argc, char** argv) {
         const double selected = bench::median_seconds(repeat, [&] {
           parallel_for(meshes.size(), [&](std::size_t i) {
             UnfoldStats st;
-            unfold_convex_mesh(meshes[i], UnfoldOptions{}, &st);
+            unfold_convex_mesh(meshes[i], selection, &st);
             selected_ok[i] = st.fold.verified;
           }, static_cast<unsigned>(std::max(threads, 1)));
         });
