@@ -50,6 +50,10 @@ struct FoldCheckOptions {
   /// a check: max_work bounds the stepping, not the set-up, whose per-piece paths to the root
   /// grow faster than the piece count (100,000 pieces: 90 s and 10 GB). 0 = no limit.
   int max_pieces = 20000;
+  /// Check only the end of the path, t in [t_begin, 1] (0: the whole path). A verdict on the net
+  /// needs the whole path; a conclusive failure after t_begin refutes it in a few steps, where the
+  /// whole check would first step through the path before it (the unfolder screens candidates so).
+  double t_begin = 0;
 };
 
 struct FoldCheckResult {
@@ -61,6 +65,12 @@ struct FoldCheckResult {
   std::string message;        ///< why not verified; empty when verified
   int pieces = 0;             ///< rigid pieces (faces joined by flat folds)
   int pairs = 0;              ///< pairs of pieces examined (candidates at some step)
+  /// Not verified, and no check of this net can verify it, whatever its start (t_begin) and
+  /// steps: the two faces cross at t by more than 1e-7 x net size, or their pieces touch in the
+  /// folded shell where no end window can prove the approach. Otherwise a failure may be the
+  /// check's own limit at the state it stepped to (a check from t = 0 can still verify the net
+  /// when t_begin > 0).
+  bool conclusive = false;
 };
 
 FoldCheckResult check_folding(const Net& net, const FoldCheckOptions& options = {});

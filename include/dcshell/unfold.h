@@ -69,6 +69,11 @@ struct UnfoldOptions {
   /// without doubling the time of shells whose nets never do.
   double fold_fallback_slack = 3.0;
   long long fold_fallback_work = 50000;
+  /// Each net is first checked on the end of its path only, t in [1 - fold_screen, 1], where
+  /// straight-line folds mostly fail; a conclusive failure there (FoldCheckResult::conclusive)
+  /// refutes the net in a few steps, where the whole check would first step through the path
+  /// before it. Nets that pass get the whole check. 0: no screen.
+  double fold_screen = 1e-3;
 };
 
 /// Features of a net, each in model units.

@@ -41,6 +41,9 @@ const TiltTable kTilt;
 // Folds whose angle is below this move nothing visible: the faces they join are one rigid piece
 // (the motion itself treats them as rigid, so the piece is exactly planar along the path).
 constexpr double kRigidAngle = 1e-4;
+// Depth (x net size) by which faces must cross to count as a sure collision: rounding is far below
+// it (find_sampled_collision's default margin).
+constexpr double kCrossMargin = 1e-7;
 
 struct Rigid {
   Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
@@ -134,6 +137,30 @@ struct Motion {
 };
 
 Vec3 lift(const Vec2& p) { return Vec3(p.x(), p.y(), 0); }
+
+// Does an edge of triangle a pass through the interior of triangle b, clear of b's plane and
+// of b's sides by more than m? (Rounding of the folded coordinates is far below m.)
+bool edge_pierces(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, double m) {
+  Vec3 n = (b[1] - b[0]).cross(b[2] - b[0]);
+  const double nn = n.norm();
+  if (!(nn > 0)) return false;
+  n /= nn;
+  for (int k = 0; k < 3; ++k) {
+    const Vec3 &p = a[k], &q = a[(k + 1) % 3];
+    const double sp = n.dot(p - b[0]), sq = n.dot(q - b[0]);
+    if (!((sp > m && sq < -m) || (sp < -m && sq > m))) continue;
+    const Vec3 x = p + (q - p) * (sp / (sp - sq));
+    bool inside = true;
+    for (int i = 0; i < 3 && inside; ++i) {
+      const Vec3 side = b[(i + 1) % 3] - b[i];
+      const double len = side.norm();
+      inside = len > 0 && n.cross(side).dot(x - b[i]) > m * len;
+    }
+    if (inside) return true;
+  }
+  return false;
+}
+
 double cross2(const Vec2& a, const Vec2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 // A rigid piece: its faces, its place in the piece tree, and the convex hull of its net corners
@@ -378,6 +405,7 @@ class Checker {
   }
   int& slot(int p, int q);  // kDone, or the pair's index in pairs_ (classified on first sight)
   bool flat_overlap(int p, int q) const;
+  bool faces_cross(int p, int q) const;
   void classify(int p, int q, PairInfo& pi);
   double end_window(int p, int q, PairInfo& pi);
   double plane_window(int p, int q, const PairInfo& pi);
@@ -780,6 +808,31 @@ bool Checker::flat_overlap(int p, int q) const {
   return overlap;
 }
 
+// Does a face of p cross a face of q in the current state, clear of its plane and sides by the
+// margin of find_sampled_collision? Then no check of this net can verify it, from whatever start.
+bool Checker::faces_cross(int p, int q) const {
+  using Box3 = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
+  const double margin = kCrossMargin * scale_;
+  auto placed = [&](int b, std::vector<std::array<Vec3, 3>>& x, std::vector<Box3>& boxes) {
+    for (int f : pc_[b].faces) {
+      std::array<Vec3, 3> c;
+      for (int k = 0; k < 3; ++k) c[k] = T_[b](lift(net_.corners[f][k]));
+      Vec3 lo = c[0].cwiseMin(c[1]).cwiseMin(c[2]), hi = c[0].cwiseMax(c[1]).cwiseMax(c[2]);
+      boxes.emplace_back(lo.data(), hi.data(), static_cast<int>(x.size()));
+      x.push_back(c);
+    }
+  };
+  std::vector<std::array<Vec3, 3>> xp, xq;
+  std::vector<Box3> bp, bq;
+  placed(p, xp, bp), placed(q, xq, bq);
+  bool cross = false;
+  CGAL::box_intersection_d(bp.begin(), bp.end(), bq.begin(), bq.end(), [&](const Box3& a, const Box3& b) {
+    const auto &A = xp[a.info()], &B = xq[b.info()];
+    cross = cross || edge_pierces(A, B, margin) || edge_pierces(B, A, margin);
+  });
+  return cross;
+}
+
 // End window for a pair that touches in the folded shell: the largest s such that the pair is
 // proved disjoint (but for fixed common corners) on [1 - s, 1]; 0 when none.
 double Checker::end_window(int p, int q, PairInfo& pi) {
@@ -931,8 +984,10 @@ FoldCheckResult Checker::run() {
   // Per step, no point moves farther than this (absolute): keeps the candidate boxes local.
   const double max_travel = 0.05 * scale_;
   auto travel = [](double h, double L, double S) { return h * L / (1 - h * S); };
-  auto fail = [&](double t, int p, int q, const Vec3& at_p, const Vec3& at_q, const std::string& why) {
+  // conclusive: no check of this net, from whatever start and with whatever steps, can verify it.
+  auto fail = [&](double t, int p, int q, const Vec3& at_p, const Vec3& at_q, const std::string& why, bool conclusive) {
     res.t = t;
+    res.conclusive = conclusive || faces_cross(p, q);
     res.face_a = face_near(p, at_p), res.face_b = face_near(q, at_q);
     if (res.face_a > res.face_b) std::swap(res.face_a, res.face_b);
     std::ostringstream os;
@@ -950,7 +1005,7 @@ FoldCheckResult Checker::run() {
   const long long step_cap =
       opt_.max_work > 0 ? std::min<long long>(opt_.max_steps, std::max<long long>(1, opt_.max_work / nb)) : opt_.max_steps;
   // Plane advancement, either piece's plane; at t = 0 only when the flat faces do not overlap.
-  double t = 0, dt = 1.0 / 16;
+  double t = std::clamp(opt_.t_begin, 0.0, 1.0), dt = 1.0 / 16;
   auto advance = [&](int p, int q, PairInfo& pi) {
     if (t == 0) {
       if (pi.flat_apart < 0) pi.flat_apart = !flat_overlap(p, q);
@@ -1024,7 +1079,7 @@ FoldCheckResult Checker::run() {
           h = hp;
         } else if (d <= 0) {
           Vec3 at = T_[p](lift(pi.cone_at));
-          fail(t, p, q, at, at, t == 0 ? "touch beside their common corner in the flat net" : "cross at their common corner");
+          fail(t, p, q, at, at, t == 0 ? "touch beside their common corner in the flat net" : "cross at their common corner", false);
           return res;
         } else {
           h = std::max(hc, hp);
@@ -1041,7 +1096,8 @@ FoldCheckResult Checker::run() {
         if (d <= 0 && hp > 0) {
           h = hp;
         } else if (d <= 0) {
-          fail(t, p, q, centre_[p], centre_[q], t == 0 ? "touch in the flat net" : (t >= 1 ? "touch in the folded shell" : "collide"));
+          fail(t, p, q, centre_[p], centre_[q], t == 0 ? "touch in the flat net" : (t >= 1 ? "touch in the folded shell" : "collide"),
+               unprovable_at_end(p, q, pi));
           if (t >= 1) res.message += " (no separating plane proves the approach)";
           return res;
         } else {
@@ -1057,7 +1113,7 @@ FoldCheckResult Checker::run() {
       // contact gets there in a few steps and is reported at it, as before.
       if (opt_.second_order && same_limit >= 100 && p == last_p && q == last_q && h < 1e-2 * (1 - t) &&
           unprovable_at_end(p, q, pi)) {
-        fail(t, p, q, centre_[p], centre_[q], "touch in the folded shell where no end window proves the approach free; stopped");
+        fail(t, p, q, centre_[p], centre_[q], "touch in the folded shell where no end window proves the approach free; stopped", true);
         return res;
       }
       if (h < opt_.min_step) {
@@ -1066,7 +1122,7 @@ FoldCheckResult Checker::run() {
         std::ostringstream why;
         why << "come into contact (step " << h << " below " << opt_.min_step << ")";
         if (pi.shares && t > 0.5) why << "; they touch in the folded shell and no separating plane proves the approach free";
-        fail(t, p, q, centre_[p], centre_[q], why.str());
+        fail(t, p, q, centre_[p], centre_[q], why.str(), unprovable_at_end(p, q, pi));
         return res;
       }
       safe_until_[id] = t + h;
@@ -1105,33 +1161,6 @@ std::vector<std::array<Eigen::Vector3d, 3>> folded_faces(const Net& net, double 
     for (int k = 0; k < 3; ++k) out[f][k] = T[f](lift(net.corners[f][k]));
   return out;
 }
-
-namespace {
-
-// Does an edge of triangle a pass through the interior of triangle b, clear of b's plane and
-// of b's sides by more than m? (Rounding of the folded coordinates is far below m.)
-bool edge_pierces(const std::array<Vec3, 3>& a, const std::array<Vec3, 3>& b, double m) {
-  Vec3 n = (b[1] - b[0]).cross(b[2] - b[0]);
-  const double nn = n.norm();
-  if (!(nn > 0)) return false;
-  n /= nn;
-  for (int k = 0; k < 3; ++k) {
-    const Vec3 &p = a[k], &q = a[(k + 1) % 3];
-    const double sp = n.dot(p - b[0]), sq = n.dot(q - b[0]);
-    if (!((sp > m && sq < -m) || (sp < -m && sq > m))) continue;
-    const Vec3 x = p + (q - p) * (sp / (sp - sq));
-    bool inside = true;
-    for (int i = 0; i < 3 && inside; ++i) {
-      const Vec3 side = b[(i + 1) % 3] - b[i];
-      const double len = side.norm();
-      inside = len > 0 && n.cross(side).dot(x - b[i]) > m * len;
-    }
-    if (inside) return true;
-  }
-  return false;
-}
-
-}  // namespace
 
 int rigid_pieces(const Net& net) { return static_cast<int>(Motion(net).body_root.size()); }
 

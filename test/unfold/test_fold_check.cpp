@@ -137,6 +137,72 @@ BOOST_AUTO_TEST_CASE(fold_check_catches_a_collision_that_exists_only_mid_way) {
   BOOST_TEST(flaps_distance(net, r.t) < 1e-6);
 }
 
+BOOST_AUTO_TEST_CASE(fold_check_from_a_later_start_checks_only_the_end_of_the_path) {
+  // The flaps that cross at t = 0.757 and stay crossed: from t_begin = 0.999 the check fails at
+  // once, conclusively (the faces cross), in fewer steps than the whole check.
+  Net crossed = flap_net(-170 * deg, -170 * deg, {-0.8, 0.5}, {1.8, 0.5});
+  const auto whole = check_folding(crossed);
+  BOOST_TEST_REQUIRE(!whole.verified);
+  BOOST_TEST(whole.conclusive, whole.message);  // the flaps really cross at the reported state
+  FoldCheckOptions end;
+  end.t_begin = 0.999;
+  const auto screened = check_folding(crossed, end);
+  BOOST_TEST(!screened.verified);
+  BOOST_TEST(screened.conclusive, screened.message);
+  BOOST_TEST(screened.t >= 0.999);
+  BOOST_TEST(screened.steps < whole.steps);
+  // The collision that exists only mid-way (from about t = 0.8) is not in the end of the path:
+  // the check from halfway between its last crossing state and 1 verifies that stretch, the one
+  // from 0.5 finds the crossing.
+  Net midway = flap_net(-160 * deg, -178 * deg, {-0.9, 0.5}, {1.8, 0.5});
+  double last = -1;  // reference: last sampled crossing state
+  for (int i = 0; i <= 2000; ++i)
+    if (flaps_intersect(midway, i / 2000.0)) last = i / 2000.0;
+  BOOST_TEST_REQUIRE(last > 0.5);
+  BOOST_TEST_REQUIRE(last < 0.999);
+  end.t_begin = (1 + last) / 2;
+  const auto after = check_folding(midway, end);
+  BOOST_TEST(after.verified, after.message << " (last crossing " << last << ")");
+  end.t_begin = 0.5;
+  const auto from_half = check_folding(midway, end);
+  BOOST_TEST(!from_half.verified);
+  BOOST_TEST(from_half.t <= check_folding(midway).t + 1e-2);
+  // A free fold is free from any start.
+  for (double t0 : {0.0, 0.5, 0.999}) {
+    end.t_begin = t0;
+    BOOST_TEST(check_folding(flap_net(-80 * deg, -80 * deg, {-0.8, 0.5}, {1.8, 0.5}), end).verified);
+  }
+}
+
+BOOST_AUTO_TEST_CASE(fold_check_conclusive_failures_of_the_end_refute_the_whole_path) {
+  // Random cut trees of ellipsoid hulls, checked from t = 0.999 and from t = 0: a conclusive
+  // failure of the end never belongs to a net the whole check verifies, and conclusive
+  // failures do occur (they are what the unfolder's screen skips the whole check for).
+  int conclusive = 0, verified = 0;
+  for (std::uint64_t seed : {1, 2, 3}) {
+    Mesh m = ellipsoid_hull(60, seed, 0.6, 0.35);
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      BOOST_TEST_CONTEXT("ellipsoid " << seed << ", random net " << attempt) {
+        UnfoldOptions o;
+        o.heuristic = UnfoldHeuristic::random;
+        o.fold_candidates = 0;
+        o.seed = 100 * seed + attempt;
+        const Net net = unfold_convex_mesh(m, o);
+        FoldCheckOptions end;
+        end.t_begin = 0.999;
+        const auto screened = check_folding(net, end), whole = check_folding(net);
+        if (screened.conclusive) {
+          ++conclusive;
+          BOOST_TEST(!whole.verified, screened.message);
+        }
+        verified += whole.verified;
+      }
+    }
+  }
+  BOOST_TEST(conclusive > 0);
+  BOOST_TEST(verified > 0);
+}
+
 BOOST_AUTO_TEST_CASE(sampled_collision_finds_crossing_flaps_and_never_a_free_fold) {
   // Crossed from mid-way to the end: the first sampled state (t close to 1) refutes it, after
   // the check's first contact, and the two flaps really intersect there (CGAL, independently).
@@ -225,6 +291,38 @@ BOOST_AUTO_TEST_CASE(unfolder_reports_the_first_contact_of_a_net_refuted_by_samp
     BOOST_TEST(!st.fold.verified);
     BOOST_TEST(st.fold.t == full.t);
     BOOST_TEST(st.fold.message == full.message);
+  }
+  BOOST_TEST(tested == 1);
+}
+
+BOOST_AUTO_TEST_CASE(unfolder_reports_the_first_contact_of_a_net_refuted_by_its_end_screen) {
+  // A net that no sampled state refutes but whose end of path fails conclusively is skipped
+  // without the whole check; when it is returned all the same (the only candidate allowed),
+  // its report is the whole check's first contact, not the screen's state.
+  UnfoldOptions o;
+  o.fold_candidates = 1;
+  o.fold_fallback_slack = 0;
+  FoldCheckOptions end;
+  end.t_begin = 1 - o.fold_screen;
+  int tested = 0;
+  for (std::uint64_t mesh_seed = 1; mesh_seed <= 4 && tested == 0; ++mesh_seed) {
+    const Mesh m = ellipsoid_hull(60, mesh_seed, 0.6, 0.35);
+    for (auto h : {UnfoldHeuristic::steepest, UnfoldHeuristic::min_perimeter, UnfoldHeuristic::random}) {
+      o.heuristic = h;
+      for (std::uint64_t seed = 1; seed <= 12 && tested == 0; ++seed) {
+        o.seed = seed;
+        UnfoldStats st;
+        const Net net = unfold_convex_mesh(m, o, &st);
+        if (find_sampled_collision(net, 16) || !check_folding(net, end).conclusive) continue;
+        ++tested;
+        const auto full = check_folding(net);
+        BOOST_TEST(st.fold_checks == 1);
+        BOOST_TEST(!full.verified);
+        BOOST_TEST(!st.fold.verified);
+        BOOST_TEST(st.fold.t == full.t);
+        BOOST_TEST(st.fold.message == full.message);
+      }
+    }
   }
   BOOST_TEST(tested == 1);
 }
