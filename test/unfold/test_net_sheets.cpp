@@ -482,6 +482,14 @@ BOOST_AUTO_TEST_CASE(fit_scale_is_the_largest_that_fits) {
     if (f > fill) fill = f, limiting = i;
   }
   BOOST_CHECK_GT(fill, 0.98);
+  // It has 3 significant digits, and the next such scale up does not fit.
+  const double e = std::pow(10.0, std::floor(std::log10(L.scale_mm_per_unit)) - 2);
+  const double k = std::round(L.scale_mm_per_unit / e);
+  BOOST_CHECK(k >= 100 && k <= 999);
+  BOOST_CHECK_CLOSE(k * e, L.scale_mm_per_unit, 1e-9);
+  SheetOptions next = o;
+  next.scale_mm_per_unit = (k + 1) * e;
+  BOOST_CHECK_THROW(dcshell::layout_net_sheets(nets, next), std::invalid_argument);
   // 2% larger does not fit: an error naming the piece and the scale that would.
   o.scale_mm_per_unit = L.scale_mm_per_unit * 1.02;
   try {
