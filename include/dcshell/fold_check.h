@@ -54,6 +54,11 @@ struct FoldCheckOptions {
   /// needs the whole path; a conclusive failure after t_begin refutes it in a few steps, where the
   /// whole check would first step through the path before it (the unfolder screens candidates so).
   double t_begin = 0;
+  /// Check t in [1 - end_first, 1] first (0: not). When that fails conclusively, that failure is
+  /// the result (refuted_at_end: the net can never be verified, and the steps before the end
+  /// were not checked); else the path from t_begin is checked exactly as without it, reusing the
+  /// pairs' set-up. The unfolder's candidates are checked so (UnfoldOptions::fold_screen).
+  double end_first = 0;
 };
 
 struct FoldCheckResult {
@@ -71,6 +76,10 @@ struct FoldCheckResult {
   /// check's own limit at the state it stepped to (a check from t = 0 can still verify the net
   /// when t_begin > 0).
   bool conclusive = false;
+  /// With end_first: the end of the path failed conclusively and is the result; t, the faces and
+  /// the message are that failure's, not the first contact along the path.
+  bool refuted_at_end = false;
+  int end_first_steps = 0;  ///< with end_first: the steps of the end's check (not in steps)
 };
 
 FoldCheckResult check_folding(const Net& net, const FoldCheckOptions& options = {});

@@ -354,6 +354,11 @@ class Checker {
   FoldCheckResult run();
 
  private:
+  // Steps the path from t0 to 1 (the set-up done). screening: a pair proved to the end is not
+  // marked done in its slot (a later pass from an earlier t0 must examine it again).
+  FoldCheckResult step_path(double t0, bool screening);
+
+ private:
   const Net& net_;
   const FoldCheckOptions& opt_;
   Motion m_;
@@ -981,6 +986,31 @@ FoldCheckResult Checker::run() {
     res.verified = true;
     return res;
   }
+  lever_off_.assign(nb + 1, 0);
+  for (int b = 0; b < nb; ++b) lever_off_[b + 1] = lever_off_[b] + pc_[b].depth;
+  lever_.assign(lever_off_[nb], 0.0);
+  const double begin = std::clamp(opt_.t_begin, 0.0, 1.0);
+  int end_steps = 0;
+  if (opt_.end_first > 0 && begin < 1 - opt_.end_first) {
+    // The end first: most straight-line folds that fail do so there, and the pairs' set-up
+    // (classes, end windows) is path-independent, so the pass from begin reuses it.
+    FoldCheckResult end = step_path(1 - opt_.end_first, true);
+    if (!end.verified && end.conclusive) {
+      end.refuted_at_end = true;
+      return end;
+    }
+    end_steps = end.steps;
+    std::fill(safe_until_.begin(), safe_until_.end(), 0.0);
+  }
+  res = step_path(begin, false);
+  res.end_first_steps = end_steps;
+  return res;
+}
+
+FoldCheckResult Checker::step_path(double t0, bool screening) {
+  FoldCheckResult res;
+  const int nb = static_cast<int>(pc_.size());
+  res.pieces = nb;
   // Per step, no point moves farther than this (absolute): keeps the candidate boxes local.
   const double max_travel = 0.05 * scale_;
   auto travel = [](double h, double L, double S) { return h * L / (1 - h * S); };
@@ -998,14 +1028,11 @@ FoldCheckResult Checker::run() {
 
   std::vector<double> abs_lever(nb), abs_theta(nb), box_lo(3 * nb), box_hi(3 * nb);
   std::vector<std::pair<int, int>> cand;
-  lever_off_.assign(nb + 1, 0);
-  for (int b = 0; b < nb; ++b) lever_off_[b + 1] = lever_off_[b] + pc_[b].depth;
-  lever_.assign(lever_off_[nb], 0.0);
   // Steps allowed: max_steps, and max_work / pieces when a work budget is given.
   const long long step_cap =
       opt_.max_work > 0 ? std::min<long long>(opt_.max_steps, std::max<long long>(1, opt_.max_work / nb)) : opt_.max_steps;
   // Plane advancement, either piece's plane; at t = 0 only when the flat faces do not overlap.
-  double t = std::clamp(opt_.t_begin, 0.0, 1.0), dt = 1.0 / 16;
+  double t = t0, dt = 1.0 / 16;
   auto advance = [&](int p, int q, PairInfo& pi) {
     if (t == 0) {
       if (pi.flat_apart < 0) pi.flat_apart = !flat_overlap(p, q);
@@ -1016,6 +1043,14 @@ FoldCheckResult Checker::run() {
     return a >= 1 - t ? 1 - t : std::min(1 - t, std::max(a, plane_advance(q, p, pi)));
   };
   int last_p = -1, last_q = -1, same_limit = 0;  // steps in a row limited by the pair last_p, last_q
+  // Proved for the rest of the path: skipped from now on (when screening, through its proof's
+  // end, so that the slot keeps the pair for the pass from an earlier start).
+  auto mark_done = [&](int& id) {
+    if (screening)
+      safe_until_[id] = kInf;
+    else
+      id = kDone;
+  };
   for (res.steps = 0; res.steps < step_cap; ++res.steps) {
     place(t);
     double max_lever = 0, max_theta = 0;
@@ -1051,7 +1086,7 @@ FoldCheckResult Checker::run() {
       int& id = slot(p, q);
       if (id == kDone) continue;
       if (t >= end_from_[id]) {
-        id = kDone;
+        mark_done(id);
         continue;
       }
       // Still covered by the proof made when it was last examined, beyond this step: skip.
@@ -1105,7 +1140,7 @@ FoldCheckResult Checker::run() {
         }
       }
       if (t + h >= end_from_[id]) {
-        id = kDone;
+        mark_done(id);
         continue;
       }
       // Such a pair is reported once it crawls: it has limited the last 100 steps, each below

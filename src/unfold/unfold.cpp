@@ -609,22 +609,16 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
         hit = find_sampled_collision(candidate, kProbeStates);
         work -= (hit ? hit->steps : kProbeStates - 1) * faces;
       }
-      if (first_pass && !hit && options.fold_screen > 0) {  // a deferred net passed it on its first pass
-        FoldCheckOptions fo;
-        fo.t_begin = 1 - std::min(options.fold_screen, 1.0);
-        fo.max_work = std::max<long long>(budget, 1);
-        FoldCheckResult sc = check_folding(candidate, fo);
-        work -= static_cast<long long>(sc.steps) * std::max(sc.pieces, 1);
-        if (sc.conclusive) hit = std::move(sc);
-      }
       FoldCheckResult fc;
       if (hit) {
         fc = *hit;
       } else {
         FoldCheckOptions fo;
         fo.max_work = std::max<long long>(budget, 1);
+        if (first_pass) fo.end_first = options.fold_screen;  // a deferred net passed it on its first pass
         fc = check_folding(candidate, fo);
-        work -= static_cast<long long>(fc.steps) * std::max(fc.pieces, 1);
+        work -= static_cast<long long>(fc.steps + fc.end_first_steps) * std::max(fc.pieces, 1);
+        if (fc.refuted_at_end) hit = fc;
       }
       ++st.fold_checks;
       if (first_pass && fc.out_of_budget) deferred.push_back({genome, heuristic, fc.t});
