@@ -69,10 +69,10 @@ struct UnfoldOptions {
   /// without doubling the time of shells whose nets never do.
   double fold_fallback_slack = 3.0;
   long long fold_fallback_work = 50000;
-  /// Each net is first checked on the end of its path only, t in [1 - fold_screen, 1], where
-  /// straight-line folds mostly fail; a conclusive failure there (FoldCheckResult::conclusive)
+  /// Each net's check starts with the end of its path, t in [1 - fold_screen, 1], where
+  /// straight-line folds mostly fail (FoldCheckOptions::end_first): a conclusive failure there
   /// refutes the net in a few steps, where the whole check would first step through the path
-  /// before it. Nets that pass get the whole check. 0: no screen.
+  /// before it; otherwise the whole path is checked as without it. 0: no screen.
   double fold_screen = 1e-3;
 };
 

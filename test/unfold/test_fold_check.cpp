@@ -177,7 +177,9 @@ BOOST_AUTO_TEST_CASE(fold_check_from_a_later_start_checks_only_the_end_of_the_pa
 BOOST_AUTO_TEST_CASE(fold_check_conclusive_failures_of_the_end_refute_the_whole_path) {
   // Random cut trees of ellipsoid hulls, checked from t = 0.999 and from t = 0: a conclusive
   // failure of the end never belongs to a net the whole check verifies, and conclusive
-  // failures do occur (they are what the unfolder's screen skips the whole check for).
+  // failures do occur (they are what the unfolder's screen skips the whole check for). With
+  // end_first the check returns that failure, or else exactly what the whole check returns
+  // (the end's set-up is shared, not its proofs).
   int conclusive = 0, verified = 0;
   for (std::uint64_t seed : {1, 2, 3}) {
     Mesh m = ellipsoid_hull(60, seed, 0.6, 0.35);
@@ -196,6 +198,21 @@ BOOST_AUTO_TEST_CASE(fold_check_conclusive_failures_of_the_end_refute_the_whole_
           BOOST_TEST(!whole.verified, screened.message);
         }
         verified += whole.verified;
+        // end_first: that refutation, or else exactly the whole check's result.
+        FoldCheckOptions first;
+        first.end_first = 1e-3;
+        const auto r = check_folding(net, first);
+        BOOST_TEST(r.refuted_at_end == screened.conclusive);
+        if (r.refuted_at_end) {
+          BOOST_TEST(r.t == screened.t);
+          BOOST_TEST(r.message == screened.message);
+        } else {
+          BOOST_TEST(r.verified == whole.verified);
+          BOOST_TEST(r.t == whole.t);
+          BOOST_TEST(r.steps == whole.steps);
+          BOOST_TEST(r.message == whole.message);
+          BOOST_TEST(r.end_first_steps == screened.steps);
+        }
       }
     }
   }
