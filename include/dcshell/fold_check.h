@@ -50,9 +50,10 @@ struct FoldCheckOptions {
   /// a check: max_work bounds the stepping, not the set-up, whose per-piece paths to the root
   /// grow faster than the piece count (100,000 pieces: 90 s and 10 GB). 0 = no limit.
   int max_pieces = 20000;
-  /// Check only the end of the path, t in [t_begin, 1] (0: the whole path). A verdict on the net
-  /// needs the whole path; a conclusive failure after t_begin refutes it in a few steps, where the
-  /// whole check would first step through the path before it (the unfolder screens candidates so).
+  /// Check only the end of the path, t in [t_begin, 1] (0: the whole path; clamped to [0, 1],
+  /// not finite: 0). A verdict on the net needs the whole path; a conclusive failure after
+  /// t_begin refutes it in a few steps, where the whole check would first step through the path
+  /// before it (what end_first does).
   double t_begin = 0;
   /// Check t in [1 - end_first, 1] first (0: not). When that fails conclusively, that failure is
   /// the result (refuted_at_end: the net can never be verified, and the steps before the end

@@ -989,7 +989,7 @@ FoldCheckResult Checker::run() {
   lever_off_.assign(nb + 1, 0);
   for (int b = 0; b < nb; ++b) lever_off_[b + 1] = lever_off_[b] + pc_[b].depth;
   lever_.assign(lever_off_[nb], 0.0);
-  const double begin = std::clamp(opt_.t_begin, 0.0, 1.0);
+  const double begin = std::isfinite(opt_.t_begin) ? std::clamp(opt_.t_begin, 0.0, 1.0) : 0.0;
   int end_steps = 0;
   if (opt_.end_first > 0 && begin < 1 - opt_.end_first) {
     // The end first: most straight-line folds that fail do so there, and the pairs' set-up
