@@ -98,6 +98,23 @@ void expect_every_dc_shell_net_verified(const std::string& model, std::size_t sh
   }
 }
 
+// Random cut trees of ellipsoid hulls (3 shapes, 8 seeds each), each in its own test context.
+template <class F>
+void for_random_ellipsoid_nets(F f) {
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const Mesh m = ellipsoid_hull(60, seed, 0.6, 0.35);
+    for (int attempt = 0; attempt < 8; ++attempt) {
+      BOOST_TEST_CONTEXT("ellipsoid " << seed << ", random net " << attempt) {
+        UnfoldOptions o;
+        o.heuristic = UnfoldHeuristic::random;
+        o.fold_candidates = 0;
+        o.seed = 100 * seed + attempt;
+        f(unfold_convex_mesh(m, o));
+      }
+    }
+  }
+}
+
 }  // namespace
 
 BOOST_AUTO_TEST_CASE(fold_check_reports_the_first_contact_of_crossing_flaps) {
@@ -181,41 +198,31 @@ BOOST_AUTO_TEST_CASE(fold_check_conclusive_failures_of_the_end_refute_the_whole_
   // end_first the check returns that failure, or else exactly what the whole check returns
   // (the end's set-up is shared, not its proofs).
   int conclusive = 0, verified = 0;
-  for (std::uint64_t seed : {1, 2, 3}) {
-    Mesh m = ellipsoid_hull(60, seed, 0.6, 0.35);
-    for (int attempt = 0; attempt < 8; ++attempt) {
-      BOOST_TEST_CONTEXT("ellipsoid " << seed << ", random net " << attempt) {
-        UnfoldOptions o;
-        o.heuristic = UnfoldHeuristic::random;
-        o.fold_candidates = 0;
-        o.seed = 100 * seed + attempt;
-        const Net net = unfold_convex_mesh(m, o);
-        FoldCheckOptions end;
-        end.t_begin = 0.999;
-        const auto screened = check_folding(net, end), whole = check_folding(net);
-        if (screened.conclusive) {
-          ++conclusive;
-          BOOST_TEST(!whole.verified, screened.message);
-        }
-        verified += whole.verified;
-        // end_first: that refutation, or else exactly the whole check's result.
-        FoldCheckOptions first;
-        first.end_first = 1e-3;
-        const auto r = check_folding(net, first);
-        BOOST_TEST(r.refuted_at_end == screened.conclusive);
-        if (r.refuted_at_end) {
-          BOOST_TEST(r.t == screened.t);
-          BOOST_TEST(r.message == screened.message);
-        } else {
-          BOOST_TEST(r.verified == whole.verified);
-          BOOST_TEST(r.t == whole.t);
-          BOOST_TEST(r.steps == whole.steps);
-          BOOST_TEST(r.message == whole.message);
-          BOOST_TEST(r.end_first_steps == screened.steps);
-        }
-      }
+  for_random_ellipsoid_nets([&](const Net& net) {
+    FoldCheckOptions end;
+    end.t_begin = 0.999;
+    const auto screened = check_folding(net, end), whole = check_folding(net);
+    if (screened.conclusive) {
+      ++conclusive;
+      BOOST_TEST(!whole.verified, screened.message);
     }
-  }
+    verified += whole.verified;
+    // end_first: that refutation, or else exactly the whole check's result.
+    FoldCheckOptions first;
+    first.end_first = 1e-3;
+    const auto r = check_folding(net, first);
+    BOOST_TEST(r.refuted_at_end == screened.conclusive);
+    if (r.refuted_at_end) {
+      BOOST_TEST(r.t == screened.t);
+      BOOST_TEST(r.message == screened.message);
+    } else {
+      BOOST_TEST(r.verified == whole.verified);
+      BOOST_TEST(r.t == whole.t);
+      BOOST_TEST(r.steps == whole.steps);
+      BOOST_TEST(r.message == whole.message);
+      BOOST_TEST(r.end_first_steps == screened.steps);
+    }
+  });
   BOOST_TEST(conclusive > 0);
   BOOST_TEST(verified > 0);
 }
@@ -254,35 +261,25 @@ BOOST_AUTO_TEST_CASE(sampled_collision_agrees_with_the_check_on_random_nets) {
   // there: CGAL's intersection of the two triangles is a segment (or more), not a corner they
   // share. Both outcomes occur, so the agreement is tested on both sides.
   int hits = 0, free_verified = 0;
-  for (std::uint64_t seed : {1, 2, 3}) {
-    Mesh m = ellipsoid_hull(60, seed, 0.6, 0.35);
-    for (int attempt = 0; attempt < 8; ++attempt) {
-      BOOST_TEST_CONTEXT("ellipsoid " << seed << ", random net " << attempt) {
-        UnfoldOptions o;
-        o.heuristic = UnfoldHeuristic::random;
-        o.fold_candidates = 0;
-        o.seed = 100 * seed + attempt;
-        Net net = unfold_convex_mesh(m, o);
-        const auto hit = find_sampled_collision(net);
-        const auto full = check_folding(net);
-        if (!hit) {
-          free_verified += full.verified;
-          continue;
-        }
-        ++hits;
-        BOOST_TEST(!full.verified);
-        BOOST_TEST(full.t <= hit->t, full.message << " / " << hit->message);
-        auto F = folded_faces(net, hit->t);
-        auto tri = [&](int f) {
-          auto p = [&](int k) { return K::Point_3(F[f][k].x(), F[f][k].y(), F[f][k].z()); };
-          return K::Triangle_3(p(0), p(1), p(2));
-        };
-        const auto x = CGAL::intersection(tri(hit->face_a), tri(hit->face_b));
-        const K::Segment_3* seg = x ? boost::get<K::Segment_3>(&*x) : nullptr;
-        BOOST_TEST((seg ? seg->squared_length() > 0 : x && !boost::get<K::Point_3>(&*x)), hit->message);
-      }
+  for_random_ellipsoid_nets([&](const Net& net) {
+    const auto hit = find_sampled_collision(net);
+    const auto full = check_folding(net);
+    if (!hit) {
+      free_verified += full.verified;
+      return;
     }
-  }
+    ++hits;
+    BOOST_TEST(!full.verified);
+    BOOST_TEST(full.t <= hit->t, full.message << " / " << hit->message);
+    auto F = folded_faces(net, hit->t);
+    auto tri = [&](int f) {
+      auto p = [&](int k) { return K::Point_3(F[f][k].x(), F[f][k].y(), F[f][k].z()); };
+      return K::Triangle_3(p(0), p(1), p(2));
+    };
+    const auto x = CGAL::intersection(tri(hit->face_a), tri(hit->face_b));
+    const K::Segment_3* seg = x ? boost::get<K::Segment_3>(&*x) : nullptr;
+    BOOST_TEST((seg ? seg->squared_length() > 0 : x && !boost::get<K::Point_3>(&*x)), hit->message);
+  });
   BOOST_TEST(hits > 0);
   BOOST_TEST(free_verified > 0);
 }
