@@ -358,7 +358,6 @@ class Checker {
   // marked done in its slot (a later pass from an earlier t0 must examine it again).
   FoldCheckResult step_path(double t0, bool screening);
 
- private:
   const Net& net_;
   const FoldCheckOptions& opt_;
   Motion m_;
