@@ -243,10 +243,13 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
     for (int v : {e.v0, e.v1}) cu.unite(3 * e.f0 + corner(e.f0, v), 3 * e.f1 + corner(e.f1, v));
   }
   std::vector<int> best(3 * nf, -1);
+  // The net's distinct points, one per set of joined corners: its hull is that of all corners
+  // (the others repeat them), from about a third of the points.
+  std::vector<Epick::Point_2> points;
   for (int f : order)
     for (int k = 0; k < 3; ++k) {
       int r = cu.find(3 * f + k);
-      if (best[r] < 0) best[r] = 3 * f + k;
+      if (best[r] < 0) best[r] = 3 * f + k, points.emplace_back(P[f][k].x(), P[f][k].y());
     }
   net.corners.resize(nf);
   for (int f = 0; f < nf; ++f)
@@ -257,7 +260,7 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
 
   for (int i = 0; i < ne; ++i)
     if (!net.edges[i].fold) d.metrics.cut_length += g.edge_length[i];
-  d.metrics.hull_area = hull_area(net_points(net));
+  d.metrics.hull_area = hull_area(points);
   if (max_overlaps > 0) d.metrics.overlapping_pairs = static_cast<int>(find_net_overlaps(net, max_overlaps).size());
   return d;
 }
