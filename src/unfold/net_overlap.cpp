@@ -49,6 +49,34 @@ bool separated_by_edges_of(const std::array<Point2, 3>& a, CGAL::Orientation a_o
   return false;
 }
 
+// Shewchuk's static filter for orient2d: the sign of the rounded determinant when its error
+// bound certifies it (+1 left, -1 right), 0 when it does not. A corner equal to an end of the
+// edge is on its line for certain (-2).
+int sure_orientation(const Point2& p, const Point2& q, const Point2& r) {
+  if (r == p || r == q) return -2;
+  constexpr double eps = 0x1p-53, bound = (3 + 16 * eps) * eps;
+  const double l = (q.x() - p.x()) * (r.y() - p.y()), rr = (q.y() - p.y()) * (r.x() - p.x());
+  const double det = l - rr, size = std::abs(l) + std::abs(rr), err = bound * size;
+  if (!(size > 1e-280) || !(size < 1e300)) return 0;  // the bound assumes no underflow or overflow
+  return det > err ? 1 : det < -err ? -1 : 0;
+}
+
+// An edge line of triangle a (oriented oa, not collinear) that the static filter proves has all
+// of b on its outer closed side: then the interiors are disjoint, as the exact test would find
+// (this only spares it the exact arithmetic of nearly collinear corners elsewhere).
+bool surely_separated_by_edges_of(const std::array<Point2, 3>& a, CGAL::Orientation oa, const std::array<Point2, 3>& b) {
+  const int inner = oa == CGAL::LEFT_TURN ? 1 : -1;
+  for (int k = 0; k < 3; ++k) {
+    bool outside = true;
+    for (int j = 0; j < 3 && outside; ++j) {
+      const int o = sure_orientation(a[k], a[(k + 1) % 3], b[j]);
+      outside = o == -2 || o == -inner;
+    }
+    if (outside) return true;
+  }
+  return false;
+}
+
 using Box = CGAL::Box_intersection_d::Box_with_info_d<double, 2, int>;
 
 struct StopSearch {};
@@ -59,6 +87,9 @@ bool triangle_interiors_overlap(const Triangle2& ta, const Triangle2& tb) {
   std::array<Point2, 3> a{p2(ta[0]), p2(ta[1]), p2(ta[2])}, b{p2(tb[0]), p2(tb[1]), p2(tb[2])};
   auto oa = CGAL::orientation(a[0], a[1], a[2]), ob = CGAL::orientation(b[0], b[1], b[2]);
   if (oa == CGAL::COLLINEAR && ob == CGAL::COLLINEAR) return false;  // two segments: no area
+  if ((oa != CGAL::COLLINEAR && surely_separated_by_edges_of(a, oa, b)) ||
+      (ob != CGAL::COLLINEAR && surely_separated_by_edges_of(b, ob, a)))
+    return false;
   return !separated_by_edges_of(a, oa, b) && !separated_by_edges_of(b, ob, a);
 }
 

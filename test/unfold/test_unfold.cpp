@@ -3,11 +3,13 @@
 #include <boost/test/unit_test.hpp>
 
 #include <map>
+#include <random>
 #include <sstream>
 
 #include "dcshell/convex_hull.h"
 #include "dcshell/error.h"
 #include "dcshell/fold_check.h"
+#include "dcshell/kernel.h"
 #include "dcshell/net_overlap.h"
 #include "dcshell/read_mesh.h"
 #include "dcshell/unfold.h"
@@ -129,6 +131,59 @@ BOOST_AUTO_TEST_CASE(overlap_test_is_exact_and_allows_touching) {
   double x = 0.5, y = std::nextafter(0.5, 0.0);
   BOOST_TEST(!triangle_interiors_overlap(a, {V(0.5, 0.5), V(2, 2), V(2, 0.5)}));
   BOOST_TEST(triangle_interiors_overlap(a, {V(x, y), V(2, 2), V(2, 0.5)}));
+}
+
+BOOST_AUTO_TEST_CASE(overlap_test_fast_path_agrees_with_exact_predicates) {
+  // The overlap test first looks for an edge line that a floating-point filter proves
+  // separating; it must never decide otherwise than the exact separating-axis test. Random
+  // triangles sharing corners with each other, with corners on (rounded) points of each other's
+  // edge lines and 1 ulp off them: the cases where the filter cannot decide.
+  using V = Eigen::Vector2d;
+  using P = Epick::Point_2;
+  auto exact = [](const Triangle2& ta, const Triangle2& tb) {
+    std::array<P, 3> a, b;
+    for (int k = 0; k < 3; ++k) a[k] = P(ta[k].x(), ta[k].y()), b[k] = P(tb[k].x(), tb[k].y());
+    auto separated = [](const std::array<P, 3>& x, const std::array<P, 3>& y) {
+      const auto inner = CGAL::orientation(x[0], x[1], x[2]);
+      for (int k = 0; k < 3; ++k) {
+        bool out = true;
+        for (const P& r : y) out = out && CGAL::orientation(x[k], x[(k + 1) % 3], r) != inner;
+        if (out) return true;
+      }
+      return false;
+    };
+    return !separated(a, b) && !separated(b, a);
+  };
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto nudge = [&](double v) { return rng() % 2 ? std::nextafter(v, 2.0) : std::nextafter(v, -2.0); };
+  int overlapping = 0, disjoint = 0;
+  for (int i = 0; i < 20000; ++i) {
+    Triangle2 a{V(u(rng), u(rng)), V(u(rng), u(rng)), V(u(rng), u(rng))};
+    Triangle2 b{V(u(rng), u(rng)), V(u(rng), u(rng)), V(u(rng), u(rng))};
+    for (int k = 0; k < 3; ++k) {
+      switch (rng() % 4) {
+        case 0: b[k] = a[rng() % 3]; break;  // a shared corner
+        case 1: {                             // on an edge line of a, rounded
+          const double w = u(rng) * 2;
+          const int e = static_cast<int>(rng() % 3);
+          b[k] = a[e] + w * (a[(e + 1) % 3] - a[e]);
+          break;
+        }
+        case 2: b[k] = V(nudge(a[rng() % 3].x()), nudge(a[rng() % 3].y())); break;  // 1 ulp off
+        default: break;
+      }
+    }
+    const auto oa = CGAL::orientation(P(a[0].x(), a[0].y()), P(a[1].x(), a[1].y()), P(a[2].x(), a[2].y()));
+    const auto ob = CGAL::orientation(P(b[0].x(), b[0].y()), P(b[1].x(), b[1].y()), P(b[2].x(), b[2].y()));
+    if (oa == CGAL::COLLINEAR || ob == CGAL::COLLINEAR) continue;  // segments: the fixed cases above
+    const bool e = exact(a, b);
+    BOOST_TEST(triangle_interiors_overlap(a, b) == e, "case " << i);
+    BOOST_TEST(triangle_interiors_overlap(b, a) == e, "case " << i);
+    (e ? overlapping : disjoint)++;
+  }
+  BOOST_TEST(overlapping > 1000);
+  BOOST_TEST(disjoint > 1000);
 }
 
 BOOST_AUTO_TEST_CASE(hand_made_overlapping_net_is_detected) {
