@@ -148,8 +148,6 @@ class LocalSearch {
       const auto& e = G_.edges[G_.group_edges[gi][0]];
       ends_[gi] = {G_.facet[e.f0], G_.facet[e.f1]};
     }
-    facet_faces_.resize(G_.num_facets);
-    for (int f = 0; f < static_cast<int>(G_.F.size()); ++f) facet_faces_[G_.facet[f]].push_back(f);
   }
 
   /// Improves `ind` (overlap-free) in place; at most `max_evaluations` full evaluations and
@@ -236,11 +234,27 @@ class LocalSearch {
       m.cut_length = cut_len, m.hull_area = hull_area;
       return ev_.score(m);
     };
+    // The net's distinct points (corners joined across folds coincide exactly): each facet's
+    // points as indices into them, so the hulls below see each point once, not once per face.
+    std::vector<Vec2> pts_u;
+    std::vector<std::vector<int>> facet_pts(G_.num_facets);
+    {
+      std::vector<std::pair<std::pair<double, double>, int>> keyed;
+      for (int f = 0; f < static_cast<int>(P.size()); ++f)
+        for (auto& p : P[f]) keyed.push_back({{p.x(), p.y()}, G_.facet[f]});
+      std::sort(keyed.begin(), keyed.end());
+      for (std::size_t i = 0; i < keyed.size(); ++i) {
+        if (i == 0 || keyed[i].first != keyed[i - 1].first) pts_u.emplace_back(keyed[i].first.first, keyed[i].first.second);
+        auto& fp = facet_pts[keyed[i].second];
+        const int id = static_cast<int>(pts_u.size()) - 1;
+        if (fp.empty() || fp.back() != id) fp.push_back(id);
+      }
+    }
     // Facets holding a hull vertex of the net.
     std::vector<Epick::Point_2> all;
     std::vector<int> owner;
-    for (int f = 0; f < static_cast<int>(P.size()); ++f)
-      for (auto& p : P[f]) all.emplace_back(p.x(), p.y()), owner.push_back(G_.facet[f]);
+    for (int fc = 0; fc < G_.num_facets; ++fc)
+      for (int id : facet_pts[fc]) all.emplace_back(pts_u[id].x(), pts_u[id].y()), owner.push_back(fc);
     auto H = hull_of(all);
     std::vector<char> on_hull(G_.num_facets, 0);
     {
@@ -271,6 +285,7 @@ class LocalSearch {
         crossing[f].push_back(c);
       }
     }
+    std::vector<int> mark_p(pts_u.size(), -1), mark_r(pts_u.size(), -1);  // point added for this piece
     for (int piece = 1; piece < G_.num_facets && work < max_work; ++piece) {
       int f = tree.parent_group[piece];
       if (f < 0 || crossing[f].empty()) continue;
@@ -289,11 +304,13 @@ class LocalSearch {
       // Hulls of the piece and of the rest.
       std::vector<Epick::Point_2> ps, rs;
       for (int fc = 0; fc < G_.num_facets; ++fc) {
-        auto& dst = tree.in_subtree(fc, piece) ? ps : rs;
-        for (int face : facet_faces_[fc])
-          for (auto& p : P[face]) dst.emplace_back(p.x(), p.y());
+        const bool in = tree.in_subtree(fc, piece);
+        auto& dst = in ? ps : rs;
+        auto& mark = in ? mark_p : mark_r;
+        for (int id : facet_pts[fc])
+          if (mark[id] != piece) mark[id] = piece, dst.emplace_back(pts_u[id].x(), pts_u[id].y());
       }
-      work += static_cast<double>(ps.size() + rs.size()) * 4;
+      work += static_cast<double>(3 * P.size()) * 4;  // counted in face corners, whatever the dedup leaves
       auto hp = hull_of(ps), hr = hull_of(rs);
       for (int c : crossing[f]) {
         Move mv;
@@ -348,7 +365,6 @@ class LocalSearch {
   const ShellGraph& G_;
   std::vector<int> to_fine_;  // search group -> fine group
   std::vector<std::array<int, 2>> ends_;
-  std::vector<std::vector<int>> facet_faces_;
 };
 
 }  // namespace
