@@ -46,4 +46,23 @@ BOOST_AUTO_TEST_CASE(lowest_failing_index_is_rethrown) {
   }
 }
 
+BOOST_AUTO_TEST_CASE(largest_first_orders_by_decreasing_cost_ties_by_index) {
+  const std::vector<std::size_t> order = largest_first({3, 10, 3, 0, 10, 7});
+  BOOST_TEST(order == (std::vector<std::size_t>{1, 4, 5, 0, 2, 3}), boost::test_tools::per_element());
+  BOOST_TEST(largest_first({}).empty());
+  // Handed out in that order, the first failing item in it is the one reported.
+  const std::vector<double> cost = {1, 5, 2, 9};
+  const auto by_cost = largest_first(cost);
+  for (unsigned threads : {1u, 2u}) {
+    try {
+      parallel_for(by_cost.size(), [&](std::size_t j) {
+        if (by_cost[j] == 0 || by_cost[j] == 1) throw std::runtime_error("item " + std::to_string(by_cost[j]));
+      }, threads);
+      BOOST_FAIL("no exception");
+    } catch (const std::runtime_error& e) {
+      BOOST_TEST(std::string(e.what()) == "item 1");
+    }
+  }
+}
+
 BOOST_AUTO_TEST_SUITE_END()
