@@ -70,7 +70,7 @@ struct FoldCheckResult {
   int face_a = -1, face_b = -1;  ///< the colliding (or too close) faces when not verified
   std::string message;        ///< why not verified; empty when verified
   int pieces = 0;             ///< rigid pieces (faces joined by flat folds)
-  int pairs = 0;              ///< pairs of pieces examined (candidates at some step)
+  int pairs = 0;              ///< pairs of pieces examined (candidates at some step; with end_first, the end's too)
   /// Not verified, and no check of this net can verify it, whatever its start (t_begin) and
   /// steps: the two faces cross at t by more than 1e-7 x net size, or their pieces touch in the
   /// folded shell where no end window can prove the approach. Otherwise a failure may be the
