@@ -149,13 +149,21 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
     if (folded[gi])
       for (int i : g.group_edges[gi]) in_tree[i] = uf.unite(g.edges[i].f0, g.edges[i].f1);
 
-  // Breadth-first placement from face 0.
-  std::vector<std::vector<std::pair<int, int>>> adj(nf);
+  // Breadth-first placement from face 0. Tree neighbours (face, edge) of face f, in edge order:
+  // adj[adj_start[f] .. adj_start[f + 1]).
+  std::vector<int> adj_start(nf + 1, 0);
   for (int i = 0; i < ne; ++i)
-    if (in_tree[i]) {
-      adj[g.edges[i].f0].push_back({g.edges[i].f1, i});
-      adj[g.edges[i].f1].push_back({g.edges[i].f0, i});
-    }
+    if (in_tree[i]) ++adj_start[g.edges[i].f0 + 1], ++adj_start[g.edges[i].f1 + 1];
+  for (int f = 0; f < nf; ++f) adj_start[f + 1] += adj_start[f];
+  std::vector<std::pair<int, int>> adj(adj_start[nf]);
+  {
+    std::vector<int> fill(adj_start.begin(), adj_start.end() - 1);
+    for (int i = 0; i < ne; ++i)
+      if (in_tree[i]) {
+        adj[fill[g.edges[i].f0]++] = {g.edges[i].f1, i};
+        adj[fill[g.edges[i].f1]++] = {g.edges[i].f0, i};
+      }
+  }
   // Each facet is placed as one rigid copy of its chart; the transform of a facet is fixed by
   // the tree edge through which the breadth-first search enters it (rotation only: charts are
   // all counter-clockwise, so nothing is mirrored).
@@ -179,7 +187,8 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
   order.push_back(0);
   for (std::size_t qi = 0; qi < order.size(); ++qi) {
     int p = order[qi];
-    for (auto [f, ei] : adj[p]) {
+    for (int a = adj_start[p]; a < adj_start[p + 1]; ++a) {
+      const auto [f, ei] = adj[a];
       if (rank[f] >= 0) continue;
       rank[f] = static_cast<int>(order.size());
       order.push_back(f);
