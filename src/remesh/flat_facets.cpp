@@ -425,8 +425,7 @@ bool realise(const Mesh& mesh, const ShellConstraints& constraints, const FlatFa
     out = convex_hull_mesh(pts);
     if (out.number_of_vertices() != pts.size()) return false;
     std::vector<V> outside;
-    for (std::size_t i = 0; i < keep.size(); ++i)
-      if (!remesh_detail::mesh_encloses(out, {keep[i]})) outside.push_back(keep_v[i]);
+    for (std::size_t i : remesh_detail::points_outside(out, keep)) outside.push_back(keep_v[i]);
     if (outside.empty()) break;
     if (round == 8) return false;
     for (V v : outside) {

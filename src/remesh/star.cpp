@@ -161,15 +161,41 @@ double volume_change(const Mesh& m, const Star& s, const Point3& w) {
   return d;
 }
 
-bool mesh_encloses(const Mesh& hull, const std::vector<Point3>& points) {
+namespace {
+
+// Indices of the points strictly above some face of the convex `hull` (exact), skipping its own
+// vertices; with first_only, at most one (the answer to "all enclosed?").
+std::vector<std::size_t> above_some_face(const Mesh& hull, const std::vector<Point3>& points, bool first_only) {
+  std::vector<Point3> vertices;
+  vertices.reserve(hull.number_of_vertices());
+  for (auto v : hull.vertices()) vertices.push_back(hull.point(v));
+  std::sort(vertices.begin(), vertices.end());
+  std::vector<std::size_t> test;
+  for (std::size_t i = 0; i < points.size(); ++i)
+    if (!std::binary_search(vertices.begin(), vertices.end(), points[i])) test.push_back(i);
+  std::vector<char> above(points.size(), 0);
   for (F f : hull.faces()) {
     const H h = hull.halfedge(f);
     const Point3 &a = hull.point(hull.source(h)), &b = hull.point(hull.target(h)), &c = hull.point(hull.target(hull.next(h)));
-    for (const Point3& p : points)
-      if (CGAL::orientation(a, b, c, p) == CGAL::POSITIVE) return false;
+    for (std::size_t i : test)
+      if (!above[i] && CGAL::orientation(a, b, c, points[i]) == CGAL::POSITIVE) {
+        if (first_only) return {i};
+        above[i] = 1;
+      }
   }
-  return true;
+  std::vector<std::size_t> out;
+  for (std::size_t i : test)
+    if (above[i]) out.push_back(i);
+  return out;
 }
+
+}  // namespace
+
+std::vector<std::size_t> points_outside(const Mesh& hull, const std::vector<Point3>& points) {
+  return above_some_face(hull, points, false);
+}
+
+bool mesh_encloses(const Mesh& hull, const std::vector<Point3>& points) { return above_some_face(hull, points, true).empty(); }
 
 double mesh_volume(const Mesh& m) {
   if (m.number_of_vertices() == 0) return 0;

@@ -63,6 +63,11 @@ double volume_change(const Mesh& mesh, const Star& star, const Point3& w);
 /// Every point on or below every face plane of the convex mesh `hull` (exact).
 bool mesh_encloses(const Mesh& hull, const std::vector<Point3>& points);
 
+/// Indices (ascending) of the points strictly above some face plane of the convex mesh `hull`
+/// (exact). Points equal to a vertex of `hull` are never tested: a convex polytope's vertex is
+/// above none of its faces (most points checked are kept vertices).
+std::vector<std::size_t> points_outside(const Mesh& hull, const std::vector<Point3>& points);
+
 /// Signed volume of a closed triangle mesh (floating point).
 double mesh_volume(const Mesh& mesh);
 

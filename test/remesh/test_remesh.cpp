@@ -19,6 +19,7 @@
 #include "dcshell/trim.h"
 #include "remesh/passes.h"
 #include "remesh/qp3.h"
+#include "remesh/star.h"
 
 using namespace dcshell;
 
@@ -359,6 +360,43 @@ BOOST_AUTO_TEST_CASE(edge_contact_gets_an_exact_separating_plane) {
   BOOST_CHECK(certify(out).certified());
   const std::vector<Mesh> free{remesh_convex_shell(a, ShellConstraints{}, opt), remesh_convex_shell(b, ShellConstraints{}, opt)};
   BOOST_CHECK(!certify(free).certified());
+}
+
+BOOST_AUTO_TEST_CASE(points_outside_skips_hull_vertices_and_agrees_with_every_face) {
+  // A random convex hull; its own vertices, points 1 ulp outside and inside faces, the centroid
+  // and far points: the ones reported are exactly those strictly above some face plane.
+  std::mt19937_64 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Point3> cloud;
+  for (int i = 0; i < 40; ++i) cloud.emplace_back(u(rng), u(rng), u(rng));
+  const Mesh hull = convex_hull_mesh(cloud);
+  std::vector<Point3> pts;
+  for (auto v : hull.vertices()) pts.push_back(hull.point(v));
+  for (auto f : hull.faces()) {  // each face's centroid, nudged 1 ulp either way in x
+    Eigen::Vector3d c = Eigen::Vector3d::Zero();
+    for (auto v : CGAL::vertices_around_face(hull.halfedge(f), hull)) c += Eigen::Vector3d(hull.point(v).x(), hull.point(v).y(), hull.point(v).z());
+    c /= 3;
+    for (double to : {-2.0, 2.0}) pts.emplace_back(std::nextafter(c.x(), to), c.y(), c.z());
+  }
+  pts.emplace_back(0, 0, 0);
+  pts.emplace_back(5, 0, 0);
+  std::vector<std::size_t> expected;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    bool above = false;
+    for (auto f : hull.faces()) {
+      auto h = hull.halfedge(f);
+      above = above || CGAL::orientation(hull.point(hull.source(h)), hull.point(hull.target(h)),
+                                         hull.point(hull.target(hull.next(h))), pts[i]) == CGAL::POSITIVE;
+    }
+    if (above) expected.push_back(i);
+  }
+  const auto got = remesh_detail::points_outside(hull, pts);
+  BOOST_TEST(got == expected, boost::test_tools::per_element());
+  BOOST_TEST(expected.size() > 10);                      // nudged centroids and the far point
+  BOOST_TEST(expected.front() >= hull.number_of_vertices());  // no hull vertex is outside
+  BOOST_TEST(remesh_detail::mesh_encloses(hull, pts) == expected.empty());
+  pts.resize(hull.number_of_vertices());
+  BOOST_TEST(remesh_detail::mesh_encloses(hull, pts));
 }
 
 BOOST_AUTO_TEST_CASE(bad_input_is_refused) {
