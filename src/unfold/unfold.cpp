@@ -72,17 +72,6 @@ struct UnionFind {
 
 using Vec2 = Eigen::Vector2d;
 
-double hull_area(const std::vector<Epick::Point_2>& pts) {
-  std::vector<Epick::Point_2> hull;
-  CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
-  double a = 0;
-  for (std::size_t i = 0; i < hull.size(); ++i) {
-    const auto &p = hull[i], &q = hull[(i + 1) % hull.size()];
-    a += p.x() * q.y() - p.y() * q.x();
-  }
-  return std::abs(a) / 2;
-}
-
 std::vector<Epick::Point_2> net_points(const Net& net) {
   std::vector<Epick::Point_2> pts;
   pts.reserve(3 * net.corners.size());
@@ -110,6 +99,17 @@ Eigen::Vector3d Rng::direction() {
     double n2 = v.squaredNorm();
     if (n2 > 1e-6 && n2 <= 1) return v / std::sqrt(n2);
   }
+}
+
+double hull_area(const std::vector<Epick::Point_2>& pts) {
+  std::vector<Epick::Point_2> hull;
+  CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(hull));
+  double a = 0;
+  for (std::size_t i = 0; i < hull.size(); ++i) {
+    const auto &p = hull[i], &q = hull[(i + 1) % hull.size()];
+    a += p.x() * q.y() - p.y() * q.x();
+  }
+  return std::abs(a) / 2;
 }
 
 std::vector<char> folded_groups(const ShellGraph& g, const Genome& w) {

@@ -52,15 +52,6 @@ Genome genome_of(const std::vector<char>& folded) {
   return w;
 }
 
-double polygon_area(const std::vector<Epick::Point_2>& hull) {
-  double a = 0;
-  for (std::size_t i = 0; i < hull.size(); ++i) {
-    const auto &p = hull[i], &q = hull[(i + 1) % hull.size()];
-    a += p.x() * q.y() - p.y() * q.x();
-  }
-  return std::abs(a) / 2;
-}
-
 std::vector<Epick::Point_2> hull_of(const std::vector<Epick::Point_2>& pts) {
   std::vector<Epick::Point_2> h;
   CGAL::convex_hull_2(pts.begin(), pts.end(), std::back_inserter(h));
@@ -322,7 +313,7 @@ class LocalSearch {
           pts.emplace_back(q.x(), q.y());
         }
         work += static_cast<double>(pts.size()) * 4;
-        double new_hull = polygon_area(hull_of(pts));
+        double new_hull = hull_area(pts);
         double new_cut = cut + G_.group_length[f] - G_.group_length[c];
         mv.estimate = est_score(new_cut, new_hull);
         if (mv.estimate < est_score(cut, hull) - 1e-12) moves.push_back(mv);

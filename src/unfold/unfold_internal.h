@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "dcshell/kernel.h"
 #include "dcshell/net.h"
 #include "dcshell/unfold.h"
 
@@ -61,6 +62,8 @@ struct Decoded {
   NetMetrics metrics;
   std::uint64_t tree_hash = 0;  ///< identifies the set of folded groups
 };
+/// Area of the convex hull of the points (exact-predicate hull, area in doubles).
+double hull_area(const std::vector<Epick::Point_2>& pts);
 std::vector<char> folded_groups(const ShellGraph& g, const Genome& w);
 std::uint64_t tree_hash(const std::vector<char>& folded);
 /// `max_overlaps`: stop the overlap search after that many pairs (0 = no overlap search).
