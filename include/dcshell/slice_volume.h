@@ -43,6 +43,12 @@ class SliceProfile {
   const Eigen::Vector3d& piece(std::size_t k) const { return coef_[k]; }
   /// Index k of the piece containing d (clamped to [0, num_pieces()-1]); requires pieces.
   std::size_t piece_index(double d) const;
+  /// The same index, searched from `hint` (an earlier answer): O(1) when d moves little, as in
+  /// a sweep over increasing offsets.
+  std::size_t piece_index(double d, std::size_t hint) const;
+  /// volume_above / volume_below with a search hint, updated to the piece used (same values).
+  double volume_above(double d, std::size_t& hint) const;
+  double volume_below(double d, std::size_t& hint) const;
 
  private:
   Eigen::Vector3d dir_ = Eigen::Vector3d::UnitZ();
@@ -51,6 +57,8 @@ class SliceProfile {
   std::vector<Eigen::Vector3d> coef_;
   std::vector<double> below_;    // below_[k] = vol(P ∩ {c·x <= h_k})
   std::vector<double> above_;    // above_[k] = vol(P ∩ {c·x >= h_k})
+  double above_in(std::size_t k, double x) const;  // volume_above inside piece k, x = d - shift_
+  double below_in(std::size_t k, double x) const;
   // scratch reused between builds
   std::vector<Eigen::Vector3d> q_;
   std::vector<double> hv_;

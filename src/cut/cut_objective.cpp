@@ -8,17 +8,16 @@
 namespace dcshell {
 
 CutObjective::CutObjective(const CutProblem& pb, double lambda) : problem_(pb) {
-  terms_.push_back({&pb.a, 1.0, true});
-  terms_.push_back({&pb.b, 1.0, false});
+  terms_.push_back({&pb.a, 1.0, true, 0.0});
+  terms_.push_back({&pb.b, 1.0, false, 0.0});
   if (lambda != 0) {
     for (const auto& x : pb.interference_a)
-      if (!x.empty()) terms_.push_back({&x, lambda, true});
+      if (!x.empty()) terms_.push_back({&x, lambda, true, volume(x)});
     for (const auto& y : pb.interference_b)
-      if (!y.empty()) terms_.push_back({&y, lambda, false});
+      if (!y.empty()) terms_.push_back({&y, lambda, false, volume(y)});
   }
   profiles_.resize(terms_.size());
-  for (std::size_t i = 0; i < terms_.size(); ++i)
-    slice_terms_.push_back({&profiles_[i], terms_[i].weight, terms_[i].above});
+  slice_terms_.reserve(terms_.size());
   if (!pb.overlap.empty()) {
     range_points_ = pb.overlap.vertices;
   } else {
@@ -32,10 +31,31 @@ CutObjective::CutObjective(const CutProblem& pb, double lambda) : problem_(pb) {
   }
 }
 
-void CutObjective::build(const Eigen::Vector3d& n) {
-  if (n == built_) return;
-  for (std::size_t i = 0; i < terms_.size(); ++i) profiles_[i].build(*terms_[i].poly, n);
+void CutObjective::build(const Eigen::Vector3d& n, double lo, double hi) {
+  if (n == built_ && built_lo_ <= lo && hi <= built_hi_) return;
+  slice_terms_.clear();
+  constant_ = 0.0;
+  for (std::size_t i = 0; i < terms_.size(); ++i) {
+    const Term& t = terms_[i];
+    if (i >= 2) {  // interference: a constant unless it straddles the offsets
+      double h_min = std::numeric_limits<double>::infinity(), h_max = -h_min;
+      for (const auto& v : t.poly->vertices) {
+        const double h = n.dot(v);
+        h_min = std::min(h_min, h);
+        h_max = std::max(h_max, h);
+      }
+      if (h_min >= hi || h_max <= lo) {
+        // Wholly above every offset (h_min >= hi) or wholly below (h_max <= lo).
+        if ((h_min >= hi) == t.above) constant_ += t.weight * t.volume;
+        continue;
+      }
+    }
+    profiles_[i].build(*t.poly, n);
+    slice_terms_.push_back({&profiles_[i], t.weight, t.above});
+  }
   built_ = n;
+  built_lo_ = lo;
+  built_hi_ = hi;
 }
 
 std::pair<double, double> CutObjective::range(const Eigen::Vector3d& n) const {
@@ -57,22 +77,23 @@ Eigen::Vector3d unit(const Eigen::Vector3d& n) { return n.squaredNorm() == 1.0 ?
 
 CutObjective::Best CutObjective::best_offset(const Eigen::Vector3d& n_in) {
   const Eigen::Vector3d n = unit(n_in);
-  build(n);
   const auto [lo, hi] = range(n);
+  build(n, lo, hi);
   const OffsetMinimum m = minimize_offset(slice_terms_, lo, hi);
-  return {{n, m.offset}, m.value};
+  return {{n, m.offset}, m.value + constant_};
 }
 
 double CutObjective::value(const CutPlane& plane) {
   const double len = plane.normal.squaredNorm() == 1.0 ? 1.0 : plane.normal.norm();
-  build(plane.normal / len);
-  return slice_objective(slice_terms_, plane.offset / len);
+  const double d = plane.offset / len;
+  build(plane.normal / len, d, d);
+  return slice_objective(slice_terms_, d) + constant_;
 }
 
 double CutObjective::separated_volume(const CutPlane& plane) {
   const double len = plane.normal.squaredNorm() == 1.0 ? 1.0 : plane.normal.norm();
-  build(plane.normal / len);
   const double d = plane.offset / len;
+  build(plane.normal / len, d, d);
   return profiles_[0].volume_above(d) + profiles_[1].volume_below(d);
 }
 

@@ -1,5 +1,8 @@
 // Private to the cut module: the objective g(n, d) of a CutProblem, evaluated through slice
-// profiles (one build per direction) and differentiated through plane sections.
+// profiles (one build per direction) and differentiated through plane sections. An interference
+// region that lies wholly on one side of every offset asked for adds a constant (all of its
+// volume or none), so it gets no profile: where many hulls share a region, most of a pair's
+// interference regions lie outside the slab its plane can move in.
 #pragma once
 #include <Eigen/Core>
 #include <vector>
@@ -40,18 +43,23 @@ class CutObjective {
   const std::vector<Eigen::Vector3d>& range_points() const { return range_points_; }
 
  private:
-  void build(const Eigen::Vector3d& n);
+  // Profiles along unit n valid for offsets in [lo, hi]: every term whose heights straddle the
+  // interval gets one (the two hulls always), the others add their constant to constant_.
+  void build(const Eigen::Vector3d& n, double lo, double hi);
   struct Term {
     const ConvexPolytope* poly;
     double weight;
     bool above;
+    double volume;  // of poly, for a term that lies on one side of the offsets
   };
   const CutProblem& problem_;
   std::vector<Term> terms_;
   std::vector<SliceProfile> profiles_;
-  std::vector<SliceTerm> slice_terms_;
+  std::vector<SliceTerm> slice_terms_;  // the terms with a profile in the last build
+  double constant_ = 0.0;               // the others' sum there
   std::vector<Eigen::Vector3d> range_points_;
   Eigen::Vector3d built_ = Eigen::Vector3d::Zero();
+  double built_lo_ = 0.0, built_hi_ = -1.0;  // the offsets the last build is valid for
 };
 
 }  // namespace dcshell

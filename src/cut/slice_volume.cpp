@@ -165,15 +165,34 @@ std::size_t SliceProfile::piece_index(double d) const {
   return std::min(k == 0 ? 0 : k - 1, coef_.size() - 1);
 }
 
+std::size_t SliceProfile::piece_index(double d, std::size_t hint) const {
+  // The last k with h_k <= x, clamped to the pieces: what the binary search above returns.
+  const double x = d - shift_;
+  const std::size_t last = coef_.size() - 1;
+  std::size_t k = std::min(hint, last);
+  while (k > 0 && h_[k] > x) --k;
+  while (k < last && h_[k + 1] <= x) ++k;
+  return k;
+}
+
+double SliceProfile::above_in(std::size_t k, double x) const {
+  const double w = h_[k + 1] - h_[k], s = (x - h_[k]) / w;
+  const auto& a = coef_[k];
+  return above_[k + 1] + w * (a[0] * (1 - s) + a[1] * (1 - s * s) / 2 + a[2] * (1 - s * s * s) / 3);
+}
+
+double SliceProfile::below_in(std::size_t k, double x) const {
+  const double w = h_[k + 1] - h_[k], s = (x - h_[k]) / w;
+  const auto& a = coef_[k];
+  return below_[k] + w * s * (a[0] + s * (a[1] / 2 + s * a[2] / 3));
+}
+
 double SliceProfile::volume_above(double d) const {
   if (coef_.empty()) return 0.0;
   const double x = d - shift_;
   if (x <= h_.front()) return above_.front();
   if (x >= h_.back()) return 0.0;
-  const std::size_t k = piece_index(d);
-  const double w = h_[k + 1] - h_[k], s = (x - h_[k]) / w;
-  const auto& a = coef_[k];
-  return above_[k + 1] + w * (a[0] * (1 - s) + a[1] * (1 - s * s) / 2 + a[2] * (1 - s * s * s) / 3);
+  return above_in(piece_index(d), x);
 }
 
 double SliceProfile::volume_below(double d) const {
@@ -181,10 +200,23 @@ double SliceProfile::volume_below(double d) const {
   const double x = d - shift_;
   if (x <= h_.front()) return 0.0;
   if (x >= h_.back()) return below_.back();
-  const std::size_t k = piece_index(d);
-  const double w = h_[k + 1] - h_[k], s = (x - h_[k]) / w;
-  const auto& a = coef_[k];
-  return below_[k] + w * s * (a[0] + s * (a[1] / 2 + s * a[2] / 3));
+  return below_in(piece_index(d), x);
+}
+
+double SliceProfile::volume_above(double d, std::size_t& hint) const {
+  if (coef_.empty()) return 0.0;
+  const double x = d - shift_;
+  if (x <= h_.front()) return above_.front();
+  if (x >= h_.back()) return 0.0;
+  return above_in(hint = piece_index(d, hint), x);
+}
+
+double SliceProfile::volume_below(double d, std::size_t& hint) const {
+  if (coef_.empty()) return 0.0;
+  const double x = d - shift_;
+  if (x <= h_.front()) return 0.0;
+  if (x >= h_.back()) return below_.back();
+  return below_in(hint = piece_index(d, hint), x);
 }
 
 double SliceProfile::area(double d) const {
@@ -220,19 +252,34 @@ OffsetMinimum minimize_offset(const std::vector<SliceTerm>& terms, double lo, do
   std::sort(xs.begin(), xs.end());
   xs.erase(std::unique(xs.begin(), xs.end()), xs.end());
 
-  OffsetMinimum best{lo, slice_objective(terms, lo)};
+  // The candidates come in increasing order (but for the roots inside one interval), so each
+  // term's piece is found from its previous one: the same pieces, hence the same sums, as
+  // slice_objective, without a binary search per term and candidate.
+  std::vector<std::size_t> hint(terms.size(), 0);
+  for (std::size_t i = 0; i < terms.size(); ++i)
+    if (terms[i].profile->num_pieces() > 0) hint[i] = terms[i].profile->piece_index(lo);
+  auto objective = [&](double d) {
+    double v = 0.0;
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      const SliceTerm& t = terms[i];
+      v += t.weight * (t.above ? t.profile->volume_above(d, hint[i]) : t.profile->volume_below(d, hint[i]));
+    }
+    return v;
+  };
+  OffsetMinimum best{lo, objective(lo)};
   auto consider = [&](double d) {
-    const double v = slice_objective(terms, d);
+    const double v = objective(d);
     if (v < best.value || (v == best.value && d < best.offset)) best = {d, v};
   };
   for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
     const double x0 = xs[i], x1 = xs[i + 1], mid = 0.5 * (x0 + x1);
     // Derivative on [x0, x1] as a quadratic in sigma = (d - x0) / (x1 - x0).
     Eigen::Vector3d q = Eigen::Vector3d::Zero();
-    for (const auto& t : terms) {
+    for (std::size_t j = 0; j < terms.size(); ++j) {
+      const SliceTerm& t = terms[j];
       const SliceProfile& p = *t.profile;
       if (p.num_pieces() == 0 || mid <= p.min_height() || mid >= p.max_height()) continue;
-      const std::size_t k = p.piece_index(mid);
+      const std::size_t k = hint[j] = p.piece_index(mid, hint[j]);
       const double hk = p.height(k), w = p.height(k + 1) - hk;
       const double al = (x0 - hk) / w, be = (x1 - x0) / w;
       const auto& a = p.piece(k);
