@@ -4,8 +4,9 @@
 `--large-spheres DIR` instead writes, outside the repository, the scaling case of doc/shell.md:
 two overlapping UV spheres of 24,864 and 1,512 faces (one part per file). `--deep-overlaps DIR`
 writes the deep-overlap cases of doc/check.md: DIR/planks20 (twenty planks through one axis),
-DIR/boxes128 (128 randomly rotated boxes, seeded) and DIR/spheres8 (eight 960-face spheres
-around one point, seeded).
+DIR/boxes128 (128 randomly rotated boxes, seeded), DIR/spheres8 (eight 960-face spheres
+around one point, seeded) and DIR/chain100 (a hundred 960-face spheres, each placed next to one
+of the five before it, like the parts of a segmented organic model; seeded).
 
 Every example is a folder with one OBJ per part, except `snowman.obj`, whose connected
 components are the parts. Coordinates are exact decimals so the files are reproducible.
@@ -97,6 +98,15 @@ def deep_overlaps(out_dir):
     for k in range(8):
         c = tuple(rng.uniform(-0.3, 0.3) for _ in range(3))
         write(os.path.join(out_dir, "spheres8", "sphere_%d.obj" % k), [sphere(c, rng.uniform(0.8, 1.2), 16, 32)])
+    rng = random.Random(100)
+    centres = [(0.0, 0.0, 0.0)]
+    while len(centres) < 100:
+        p = rng.choice(centres[-5:])
+        d = [rng.gauss(0, 1) for _ in range(3)]
+        n = math.sqrt(sum(x * x for x in d))
+        centres.append(tuple(round(a + 1.2 * x / n, 9) for a, x in zip(p, d)))
+    for k, c in enumerate(centres):
+        write(os.path.join(out_dir, "chain100", "sphere_%03d.obj" % k), [sphere(c, round(rng.uniform(0.6, 0.9), 9), 16, 32)])
 
 
 def main():

@@ -1,6 +1,7 @@
 // Exact volume of a union of convex polytopes: the denominator of the volume-loss metric.
 #pragma once
 #include <cstddef>
+#include <functional>
 #include <vector>
 
 #include "dcshell/exact_polytope.h"
@@ -22,6 +23,7 @@ struct UnionVolume {
   double value = 0.0;         ///< the volume, within `error_bound`
   double error_bound = 0.0;   ///< certified bound on |value - true volume|
   bool exact_fallback = false;///< the interval filter was too loose; value is the exact rational rounded
+  bool fixed_point = false;   ///< summed on a fixed-point grid of exact vertices (about 30 digits)
   UnionMethod method = UnionMethod::nerve;  ///< the one that produced `value` (never automatic)
   std::size_t terms = 0;      ///< nerve: inclusion–exclusion terms with a common interior;
                               ///< decomposition: convex pieces
@@ -40,9 +42,8 @@ struct UnionVolume {
 /// 2·(polytopes + candidate pairs) + 256 terms, or once its intersections of three or more
 /// polytopes have cost more than twice the pairwise ones (counted as vertices × planes
 /// tested): a deterministic rule. Terms are summed in interval arithmetic, then with every
-/// vertex evaluated exactly; when the enclosure is still wider than `max_relative_error` of the
-/// value, `automatic` sums the decomposition's positive terms instead of the nerve's cancelling
-/// ones, and only then are exact rationals used.
+/// vertex evaluated exactly, then on a fixed-point grid (below); only when the enclosure is
+/// still wider than `max_relative_error` of the value are exact rationals used.
 UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max_relative_error = 1e-12,
                          UnionMethod method = UnionMethod::automatic);
 
@@ -50,6 +51,21 @@ UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max
 /// (every pair with a common interior, i < j): same value, fewer exact intersections.
 UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, const std::vector<Overlap>& overlaps,
                          double max_relative_error = 1e-12, UnionMethod method = UnionMethod::automatic);
+
+/// Whether a union volume known to be `value` ± `error_bound` is known well enough.
+using UnionEnough = std::function<bool(const ExactRational& value, double error_bound)>;
+
+/// The same, refined until `enough` holds, for callers whose precision depends on the value
+/// (the volume loss needs the union to a fraction of union − shells). Four levels on the same
+/// terms, each tried only when the one before is not enough: the coordinates' intervals; those
+/// intervals with every vertex evaluated exactly; a fixed-point sum (every exact vertex rounded
+/// to a multiple of 2^-k, about 120 bits below the largest coordinate, the determinants summed
+/// exactly in integers, and the rounding's effect bounded triangle by triangle); exact
+/// rationals (error 0). `value`, when given, receives the centre as an exact rational.
+/// `overlaps`, when given, is `find_overlaps(polytopes)`, reused as above.
+UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, const std::vector<Overlap>* overlaps,
+                         const UnionEnough& enough, UnionMethod method = UnionMethod::automatic,
+                         ExactRational* value = nullptr);
 
 /// The same sum in exact rationals only (no interval filter): for callers that must decide the
 /// sign of a difference the enclosure cannot. `overlaps`, when given, is

@@ -72,6 +72,7 @@ int run_volume_loss(int argc, char** argv) {
         .field("volume_loss_exact", loss.exact)
         .field("union_volume_error_bound", loss.union_stats.error_bound)
         .field("union_exact_fallback", loss.union_stats.exact_fallback)
+        .field("union_fixed_point", loss.union_stats.fixed_point)
         .field("union_method", to_string(loss.union_stats.method))
         .field("union_terms", loss.union_stats.terms)
         .field("max_overlap_depth", loss.union_stats.max_clique);

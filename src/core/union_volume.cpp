@@ -7,6 +7,7 @@
 #include <CGAL/Mpzf.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -133,10 +134,10 @@ std::vector<ExactPolytope> disjoint_pieces(const std::vector<ExactPolytope>& pol
   return pieces;
 }
 
-// Σ ±vol(term) in intervals, from the coordinates' current approximations, then (when that is
-// wider than `max_relative_error` of the value) after evaluating every vertex exactly (each
-// coordinate then within an ulp). False when both are too wide.
-bool interval_sum(const std::vector<Term>& terms, double max_relative_error, UnionVolume& out) {
+// Σ ±vol(term) in intervals, from the coordinates' current approximations, then after
+// evaluating every vertex exactly (each coordinate then within an ulp). False when neither is
+// enough.
+bool interval_sum(const std::vector<Term>& terms, const UnionEnough& enough, UnionVolume& out, ExactRational* value) {
   for (bool tight : {false, true}) {
     // The ends are summed exactly (doubles added into an Mpzf): rounding each of thousands of
     // additions outward would widen the sum by an ulp of the total per term.
@@ -153,14 +154,87 @@ bool interval_sum(const std::vector<Term>& terms, double max_relative_error, Uni
     }
     const double l = lo.to_interval().first, h = hi.to_interval().second;
     out.value = 0.5 * (l + h);
-    out.error_bound = 0.5 * (h - l);
-    if (h - l <= max_relative_error * std::fabs(out.value)) return true;
+    // Half the width, and the rounding of the midpoint and of that half.
+    out.error_bound = 0.5 * (h - l) * (1 + 0x1p-50) + std::fabs(out.value) * 0x1p-52;
+    const ExactRational centre(out.value);
+    if (enough(centre, out.error_bound)) {
+      if (value) *value = centre;
+      return true;
+    }
   }
   return false;
 }
 
+// Σ ±vol(term) on the grid 2^-k, k about 120 bits below the largest coordinate: every vertex
+// (evaluated exactly) truncated to the grid, the fan determinants summed exactly in integers.
+// Truncation moves a difference of two vertices by delta < 2·sqrt(3)·2^-k, which changes a
+// determinant of three such differences of length <= D by at most 3 delta (D + delta)^2; that,
+// over every triangle, bounds the error. About 30 digits without one rational operation (the
+// rational sum's denominators grow with every term: minutes on 100 overlapping fine hulls).
+bool fixed_point_sum(const std::vector<Term>& terms, const UnionEnough& enough, UnionVolume& out,
+                     ExactRational* value) {
+  double largest = 0;
+  for (const auto& t : terms)
+    for (const auto& v : t.polytope.vertices) {
+      const auto a = CGAL::approx(v);
+      for (const auto& c : {a.x(), a.y(), a.z()}) largest = std::max({largest, std::fabs(c.inf()), std::fabs(c.sup())});
+    }
+  if (!(largest > 0) || !std::isfinite(largest)) return false;
+  const int k = 120 - std::ilogb(largest);
+  const double delta = 2 * std::sqrt(3.0) * std::ldexp(1.0, -k) * (1 + 0x1p-40);
+  auto grid = [k](const ExactRational& x) {  // x·2^k truncated: |x − result·2^-k| < 2^-k
+    mpz_class n = x.get_num(), d = x.get_den();
+    if (k >= 0) n <<= k; else d <<= -k;
+    return mpz_class(n / d);
+  };
+  mpz_class total = 0;
+  double error = 0;  // on 6 x the volume
+  std::vector<std::array<mpz_class, 3>> q;
+  for (const auto& t : terms) {
+    const ExactPolytope& p = t.polytope;
+    if (p.empty()) continue;
+    q.resize(p.vertices.size());
+    double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+    for (std::size_t i = 0; i < p.vertices.size(); ++i) {
+      const auto& e = CGAL::exact(p.vertices[i]);
+      q[i] = {{grid(e.x()), grid(e.y()), grid(e.z())}};
+      const auto a = CGAL::approx(p.vertices[i]);
+      const CGAL::Interval_nt<false> c[3] = {a.x(), a.y(), a.z()};
+      for (int j = 0; j < 3; ++j) lo[j] = std::min(lo[j], c[j].inf()), hi[j] = std::max(hi[j], c[j].sup());
+    }
+    // D bounds every difference of two vertices (the box's diagonal, rounded up).
+    const double D = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) +
+                               (hi[2] - lo[2]) * (hi[2] - lo[2])) * (1 + 0x1p-40);
+    const auto& o = q[p.faces.front().loop.front()];
+    mpz_class six = 0;
+    std::size_t triangles = 0;
+    for (const auto& f : p.faces) {
+      const auto& L = f.loop;
+      for (std::size_t m = 1; m + 1 < L.size(); ++m, ++triangles) {
+        const auto &A = q[L[0]], &B = q[L[m]], &C = q[L[m + 1]];
+        const mpz_class ax = A[0] - o[0], ay = A[1] - o[1], az = A[2] - o[2];
+        const mpz_class bx = B[0] - o[0], by = B[1] - o[1], bz = B[2] - o[2];
+        const mpz_class cx = C[0] - o[0], cy = C[1] - o[1], cz = C[2] - o[2];
+        six += ax * (by * cz - bz * cy) - ay * (bx * cz - bz * cx) + az * (bx * cy - by * cx);
+      }
+    }
+    if (t.plus) total += six; else total -= six;
+    error += double(triangles) * 3 * delta * (D + delta) * (D + delta);
+  }
+  // total·2^-3k is six times the sum on the grid.
+  ExactRational centre = k >= 0 ? ExactRational(total, mpz_class(6) << (3 * k))
+                                : ExactRational(mpz_class(total << (-3 * k)), 6);
+  centre.canonicalize();
+  out.value = CGAL::to_double(centre);
+  out.error_bound = error / 6 * (1 + 1e-6);  // the rounding of summing millions of terms
+  out.fixed_point = true;
+  if (!enough(centre, out.error_bound)) return false;
+  if (value) *value = centre;
+  return true;
+}
+
 // Σ ±vol(term) in exact rationals, whose denominators grow with every term: the expensive way.
-void exact_sum_of(const std::vector<Term>& terms, UnionVolume& out, ExactRational* exact_sum) {
+void exact_sum_of(const std::vector<Term>& terms, UnionVolume& out, ExactRational* value) {
   ExactRational total(0);
   for (const auto& t : terms) {
     if (t.plus) total += exact_volume(t.polytope); else total -= exact_volume(t.polytope);
@@ -168,7 +242,15 @@ void exact_sum_of(const std::vector<Term>& terms, UnionVolume& out, ExactRationa
   out.value = CGAL::to_double(total);
   out.error_bound = std::fabs(out.value) * 1e-16;  // rounding of the exact rational
   out.exact_fallback = true;
-  if (exact_sum) *exact_sum = total;
+  out.fixed_point = false;
+  if (value) *value = total;
+}
+
+// The levels of union_volume(..., enough, ...) on one set of terms; `exact_only` skips to the last.
+void sum_terms(const std::vector<Term>& terms, const UnionEnough& enough, bool exact_only, UnionVolume& out,
+               ExactRational* value) {
+  if (!exact_only && (interval_sum(terms, enough, out, value) || fixed_point_sum(terms, enough, out, value))) return;
+  exact_sum_of(terms, out, value);
 }
 
 std::vector<Term> decomposition_terms(const std::vector<ExactPolytope>& polys,
@@ -183,12 +265,10 @@ std::vector<Term> decomposition_terms(const std::vector<ExactPolytope>& polys,
 }
 
 // Nerve walk while it stays within budget (shallow overlaps: fewest exact constructions), else
-// the disjoint decomposition; then the sum. With `automatic`, a nerve sum whose cancellation
-// leaves the intervals too wide is also redone on the decomposition (positive terms) before
-// anything is summed in rationals. `exact_sum` asks for the rational sum.
+// the disjoint decomposition; then the sum, refined until `enough` (sum_terms).
 UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector<std::vector<std::size_t>>& later,
-                      const std::vector<std::vector<const ExactPolytope*>>* pair_region, double max_relative_error,
-                      UnionMethod method, ExactRational* exact_sum) {
+                      const std::vector<std::vector<const ExactPolytope*>>* pair_region, const UnionEnough& enough,
+                      UnionMethod method, bool exact_only, ExactRational* value) {
   UnionVolume out;
   const std::size_t n = polys.size();
   std::size_t pairs = 0;
@@ -214,17 +294,14 @@ UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector
     if (!w.abandoned) {
       out.method = UnionMethod::nerve;
       out.terms = w.terms.size();
-      if (!exact_sum && interval_sum(w.terms, max_relative_error, out)) return out;
-      if (exact_sum || method == UnionMethod::nerve) {
-        exact_sum_of(w.terms, out, exact_sum);
-        return out;
-      }
+      sum_terms(w.terms, enough, exact_only, out, value);
+      return out;
     }
   }
   const std::vector<Term> terms = decomposition_terms(polys, later);
   out.method = UnionMethod::decomposition;
   out.terms = terms.size();
-  if (exact_sum || !interval_sum(terms, max_relative_error, out)) exact_sum_of(terms, out, exact_sum);
+  sum_terms(terms, enough, exact_only, out, value);
   return out;
 }
 
@@ -246,6 +323,13 @@ struct KnownPairs {
   std::vector<std::vector<std::size_t>> later;
   std::vector<std::vector<const ExactPolytope*>> region;
 };
+
+// Enough when the enclosure's width is at most `max_relative_error` of the value.
+UnionEnough relative_error(double max_relative_error) {
+  return [max_relative_error](const ExactRational& v, double error_bound) {
+    return 2 * error_bound <= max_relative_error * std::fabs(CGAL::to_double(v));
+  };
+}
 
 KnownPairs known_pairs(std::size_t n, const std::vector<Overlap>& overlaps) {
   std::vector<std::vector<std::pair<std::size_t, const ExactPolytope*>>> by_first(n);
@@ -269,28 +353,37 @@ const char* to_string(UnionMethod method) {
   return "automatic";
 }
 
+UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>* overlaps,
+                         const UnionEnough& enough, UnionMethod method, ExactRational* value) {
+  // Only pairs with a common interior can start a non-empty term, and their intersections are
+  // already known: the walk starts from them.
+  if (overlaps) {
+    const KnownPairs k = known_pairs(polys.size(), *overlaps);
+    return sum_union(polys, k.later, &k.region, enough, method, false, value);
+  }
+  return sum_union(polys, later_neighbours(polys), nullptr, enough, method, false, value);
+}
+
 UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error, UnionMethod method) {
-  return sum_union(polys, later_neighbours(polys), nullptr, max_relative_error, method, nullptr);
+  return union_volume(polys, nullptr, relative_error(max_relative_error), method);
+}
+
+UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>& overlaps,
+                         double max_relative_error, UnionMethod method) {
+  return union_volume(polys, &overlaps, relative_error(max_relative_error), method);
 }
 
 ExactRational exact_union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>* overlaps,
                                  UnionMethod method) {
   ExactRational v(0);
+  const UnionEnough never = [](const ExactRational&, double) { return false; };
   if (overlaps) {
     const KnownPairs k = known_pairs(polys.size(), *overlaps);
-    sum_union(polys, k.later, &k.region, 0.0, method, &v);
+    sum_union(polys, k.later, &k.region, never, method, true, &v);
   } else {
-    sum_union(polys, later_neighbours(polys), nullptr, 0.0, method, &v);
+    sum_union(polys, later_neighbours(polys), nullptr, never, method, true, &v);
   }
   return v;
-}
-
-UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>& overlaps,
-                         double max_relative_error, UnionMethod method) {
-  // Only pairs with a common interior can start a non-empty term, and their intersections are
-  // already known: the walk starts from them.
-  const KnownPairs k = known_pairs(polys.size(), overlaps);
-  return sum_union(polys, k.later, &k.region, max_relative_error, method, nullptr);
 }
 
 }  // namespace dcshell

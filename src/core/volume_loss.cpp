@@ -1,7 +1,5 @@
 #include "dcshell/volume_loss.h"
 
-#include <CGAL/Interval_nt.h>
-
 #include <cmath>
 
 #include "dcshell/mesh_volume.h"
@@ -15,33 +13,34 @@ VolumeLoss volume_loss(const std::vector<ExactPolytope>& hulls, const std::vecto
   for (const auto& s : shells) six += six_signed_volume(s);
   const ExactRational shells_exact = ExactRational(six) / 6;
   out.shells_volume = CGAL::to_double(shells_exact);
-  out.union_stats = overlaps ? union_volume(hulls, *overlaps) : union_volume(hulls);
-  out.union_volume = out.union_stats.value;
 
-  using I = CGAL::Interval_nt<true>;  // protected: sets the rounding mode itself
-  const I u(out.union_stats.value - out.union_stats.error_bound, out.union_stats.value + out.union_stats.error_bound);
-  const auto sv = CGAL::to_interval(shells_exact);
-  const I diff = u - I(sv.first, sv.second);
-  if (u.inf() > 0) {
-    const I loss = diff / u;
-    const double width = loss.sup() - loss.inf();
-    if (diff.inf() > 0 || diff.sup() < 0) {
-      if (width <= max_relative_error * std::fabs(0.5 * (loss.inf() + loss.sup()))) {
-        out.value = 0.5 * (loss.inf() + loss.sup());
-        out.error_bound = 0.5 * width;
-        return out;
-      }
-    }
-  } else if (u.sup() <= 0) {
-    return out;  // no union (no hulls): no loss to speak of
+  // The loss 1 − S/U grows with U (S >= 0), so a union within [U − e, U + e] (U − e > 0) puts it
+  // in [loss(U − e), loss(U + e)]: decided once that excludes 0 and is narrow enough.
+  auto enclosure = [&](const ExactRational& u, double error_bound) -> std::pair<double, double> {
+    const ExactRational e(error_bound), lo = u - e, hi = u + e;
+    if (CGAL::sign(lo) <= 0) return {-HUGE_VAL, HUGE_VAL};
+    return {CGAL::to_interval(ExactRational((lo - shells_exact) / lo)).first,
+            CGAL::to_interval(ExactRational((hi - shells_exact) / hi)).second};
+  };
+  const UnionEnough enough = [&](const ExactRational& u, double error_bound) {
+    const auto [l, h] = enclosure(u, error_bound);
+    return (l > 0 || h < 0) && h - l <= max_relative_error * std::fabs(0.5 * (l + h));
+  };
+  // The union is refined only as far as the loss needs (intervals, fixed point, rationals).
+  ExactRational u(0);
+  out.union_stats = overlaps ? union_volume(hulls, overlaps, enough, UnionMethod::automatic, &u)
+                             : union_volume(hulls, nullptr, enough, UnionMethod::automatic, &u);
+  out.union_volume = out.union_stats.value;
+  if (CGAL::sign(u) <= 0) return out;  // no union (no hulls): no loss to speak of
+  if (out.union_stats.exact_fallback) {  // the sign or the digits needed the exact union
+    out.exact = true;
+    out.value = CGAL::to_double(ExactRational((u - shells_exact) / u));
+    out.error_bound = std::fabs(out.value) * 1.2e-16;  // rounding of the exact rational
+    return out;
   }
-  // The sign or the digits are undecided: everything exactly.
-  const ExactRational u_exact = exact_union_volume(hulls, overlaps);
-  out.union_volume = CGAL::to_double(u_exact);
-  out.exact = true;
-  if (CGAL::is_zero(u_exact)) return out;
-  out.value = CGAL::to_double((u_exact - shells_exact) / u_exact);
-  out.error_bound = std::fabs(out.value) * 1.2e-16;  // rounding of the exact rational
+  const auto [l, h] = enclosure(u, out.union_stats.error_bound);
+  out.value = 0.5 * (l + h);
+  out.error_bound = 0.5 * (h - l) * (1 + 0x1p-50) + std::fabs(out.value) * 0x1p-52;
   return out;
 }
 

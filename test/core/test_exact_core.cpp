@@ -169,6 +169,29 @@ BOOST_AUTO_TEST_CASE(round_hulls_around_one_point_are_summed_without_rationals) 
   BOOST_TEST(std::fabs(u.value - exact) <= u.error_bound);
 }
 
+BOOST_AUTO_TEST_CASE(fixed_point_sum_holds_the_exact_union) {
+  // Asked for more digits than intervals give, the union is summed on the fixed-point grid: its
+  // certified enclosure must hold the exact rational, and be some 30 digits narrow.
+  std::mt19937_64 rng(11);
+  for (const auto& sets : {synthetic::random_spheres(rng, 6, 6, 0.1), synthetic::random_boxes(rng, 12, 3.0, 0.4, 1.4)}) {
+    const std::vector<ExactPolytope> p = hulls_of(sets);
+    const ExactRational exact = exact_union_volume(p);
+    const std::vector<Overlap> o = find_overlaps(p);
+    for (const std::vector<Overlap>* overlaps : {static_cast<const std::vector<Overlap>*>(nullptr), &o}) {
+      ExactRational centre(-1);
+      const UnionVolume u = union_volume(
+          p, overlaps, [](const ExactRational& v, double e) { return e <= 1e-20 * CGAL::to_double(v); },
+          UnionMethod::automatic, &centre);
+      BOOST_TEST(u.fixed_point);
+      BOOST_TEST(!u.exact_fallback);
+      BOOST_TEST(u.error_bound <= 1e-25 * u.value);
+      BOOST_TEST(u.error_bound > 0.0);
+      BOOST_TEST(CGAL::abs(centre - exact) <= ExactRational(u.error_bound));
+      BOOST_TEST(u.value == CGAL::to_double(exact), boost::test_tools::tolerance(1e-15));
+    }
+  }
+}
+
 BOOST_AUTO_TEST_CASE(volume_loss_has_the_true_sign_down_to_one_ulp) {
   // Two overlapping boxes with non-representable volumes, split exactly at x = c: the shells
   // fill the union, so the loss is exactly 0, whatever the doubles' rounding of the volumes.
@@ -198,6 +221,18 @@ BOOST_AUTO_TEST_CASE(volume_loss_has_the_true_sign_down_to_one_ulp) {
   BOOST_TEST(half.value == CGAL::to_double((u - exact_volume(exact_hull(box_points(0, 0, 0, 0.11, 0.3, 0.7)))) / u),
              boost::test_tools::tolerance(1e-12));
   BOOST_TEST(half.error_bound <= 1e-9 * half.value);
+  // A loss of 7e-9, which the intervals (1e-16 of the union) cannot give to 1e-9 of itself: the
+  // fixed-point sum does, and matches the exact quotient.
+  const double right = x1 - 1e-9;
+  VolumeLoss tiny = volume_loss(hulls, shells_to(right), &pairs);
+  BOOST_TEST(!tiny.exact);
+  BOOST_TEST(tiny.union_stats.fixed_point);
+  const ExactRational s = exact_volume(exact_hull(box_points(0, 0, 0, c, 0.3, 0.7))) +
+                          exact_volume(exact_hull(box_points(c, 0, 0, right, 0.3, 0.7)));
+  const double truth = CGAL::to_double((u - s) / u);
+  BOOST_TEST(truth > 0.0);
+  BOOST_TEST(std::fabs(tiny.value - truth) <= tiny.error_bound + 1e-16 * truth);
+  BOOST_TEST(tiny.error_bound <= 1e-9 * tiny.value);
 }
 
 BOOST_AUTO_TEST_CASE(nested_and_duplicated_polytopes) {
