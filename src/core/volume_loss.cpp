@@ -22,9 +22,11 @@ VolumeLoss volume_loss(const std::vector<ExactPolytope>& hulls, const std::vecto
     return {CGAL::to_interval(ExactRational((lo - shells_exact) / lo)).first,
             CGAL::to_interval(ExactRational((hi - shells_exact) / hi)).second};
   };
+  // The union itself to 1e-12, as union_volume gives it: the report prints it too.
   const UnionEnough enough = [&](const ExactRational& u, double error_bound) {
     const auto [l, h] = enclosure(u, error_bound);
-    return (l > 0 || h < 0) && h - l <= max_relative_error * std::fabs(0.5 * (l + h));
+    return (l > 0 || h < 0) && h - l <= max_relative_error * std::fabs(0.5 * (l + h)) &&
+           2 * error_bound <= 1e-12 * CGAL::to_double(u);
   };
   // The union is refined only as far as the loss needs (intervals, fixed point, rationals).
   ExactRational u(0);
