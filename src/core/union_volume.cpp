@@ -324,13 +324,6 @@ struct KnownPairs {
   std::vector<std::vector<const ExactPolytope*>> region;
 };
 
-// Enough when the enclosure's width is at most `max_relative_error` of the value.
-UnionEnough relative_error(double max_relative_error) {
-  return [max_relative_error](const ExactRational& v, double error_bound) {
-    return 2 * error_bound <= max_relative_error * std::fabs(CGAL::to_double(v));
-  };
-}
-
 KnownPairs known_pairs(std::size_t n, const std::vector<Overlap>& overlaps) {
   std::vector<std::vector<std::pair<std::size_t, const ExactPolytope*>>> by_first(n);
   for (const auto& o : overlaps) by_first[o.i].push_back({o.j, &o.region});
@@ -340,6 +333,22 @@ KnownPairs known_pairs(std::size_t n, const std::vector<Overlap>& overlaps) {
     for (const auto& [j, r] : by_first[i]) k.later[i].push_back(j), k.region[i].push_back(r);
   }
   return k;
+}
+
+// Enough when the enclosure's width is at most `max_relative_error` of the value.
+UnionEnough relative_error(double max_relative_error) {
+  return [max_relative_error](const ExactRational& v, double error_bound) {
+    return 2 * error_bound <= max_relative_error * std::fabs(CGAL::to_double(v));
+  };
+}
+
+// The walk from the pairs with a common interior (`overlaps`, whose intersections it reuses),
+// or from the box-overlapping ones.
+UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>* overlaps,
+                      const UnionEnough& enough, UnionMethod method, bool exact_only, ExactRational* value) {
+  if (!overlaps) return sum_union(polys, later_neighbours(polys), nullptr, enough, method, exact_only, value);
+  const KnownPairs k = known_pairs(polys.size(), *overlaps);
+  return sum_union(polys, k.later, &k.region, enough, method, exact_only, value);
 }
 
 }  // namespace
@@ -355,13 +364,7 @@ const char* to_string(UnionMethod method) {
 
 UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>* overlaps,
                          const UnionEnough& enough, UnionMethod method, ExactRational* value) {
-  // Only pairs with a common interior can start a non-empty term, and their intersections are
-  // already known: the walk starts from them.
-  if (overlaps) {
-    const KnownPairs k = known_pairs(polys.size(), *overlaps);
-    return sum_union(polys, k.later, &k.region, enough, method, false, value);
-  }
-  return sum_union(polys, later_neighbours(polys), nullptr, enough, method, false, value);
+  return sum_union(polys, overlaps, enough, method, false, value);
 }
 
 UnionVolume union_volume(const std::vector<ExactPolytope>& polys, double max_relative_error, UnionMethod method) {
@@ -376,13 +379,7 @@ UnionVolume union_volume(const std::vector<ExactPolytope>& polys, const std::vec
 ExactRational exact_union_volume(const std::vector<ExactPolytope>& polys, const std::vector<Overlap>* overlaps,
                                  UnionMethod method) {
   ExactRational v(0);
-  const UnionEnough never = [](const ExactRational&, double) { return false; };
-  if (overlaps) {
-    const KnownPairs k = known_pairs(polys.size(), *overlaps);
-    sum_union(polys, k.later, &k.region, never, method, true, &v);
-  } else {
-    sum_union(polys, later_neighbours(polys), nullptr, never, method, true, &v);
-  }
+  sum_union(polys, overlaps, [](const ExactRational&, double) { return false; }, method, true, &v);
   return v;
 }
 

@@ -30,8 +30,7 @@ VolumeLoss volume_loss(const std::vector<ExactPolytope>& hulls, const std::vecto
   };
   // The union is refined only as far as the loss needs (intervals, fixed point, rationals).
   ExactRational u(0);
-  out.union_stats = overlaps ? union_volume(hulls, overlaps, enough, UnionMethod::automatic, &u)
-                             : union_volume(hulls, nullptr, enough, UnionMethod::automatic, &u);
+  out.union_stats = union_volume(hulls, overlaps, enough, UnionMethod::automatic, &u);
   out.union_volume = out.union_stats.value;
   if (CGAL::sign(u) <= 0) return out;  // no union (no hulls): no loss to speak of
   if (out.union_stats.exact_fallback) {  // the sign or the digits needed the exact union
