@@ -3,6 +3,7 @@
 #include "dcshell/fold_check.h"
 #include "dcshell/net_overlap.h"
 #include "unfold/box_sweep.h"
+#include "unfold/pair_slots.h"
 
 #include <CGAL/Box_intersection_d/Box_with_info_d.h>
 #include <CGAL/box_intersection_d.h>
@@ -16,7 +17,6 @@
 #include <optional>
 #include <sstream>
 #include <stdexcept>
-#include <unordered_map>
 
 namespace dcshell {
 
@@ -364,7 +364,7 @@ class Checker {
   std::vector<Piece> pc_;
   double scale_ = 0, tol_ = 0;
   // Pairs examined so far (stable addresses), found through a dense p x q table while there are
-  // at most kDensePieces pieces, else through a hash map.
+  // at most kDensePieces pieces, else through per-piece sorted rows (pair_slots.h).
   static constexpr int kDensePieces = 2048;
   // The step loop skips most candidates (done, or covered beyond the step) reading only the
   // slot (kDone) and two compact arrays per pair, not the pair's record.
@@ -374,7 +374,7 @@ class Checker {
   // its end window from end_from_ = 1 - window on.
   std::vector<double> safe_until_, end_from_;
   std::vector<int> pair_slot_;
-  std::unordered_map<std::uint64_t, int> pair_map_;
+  unfold_detail::PairSlots pair_rows_;
   // Running sums of |angle| x lever of each piece about the hinges on its way to the root
   // (offset per piece), at the current state: computed once per step, so a pair's lever sum up
   // to its common ancestor is one lookup per piece (paths are tens of hinges long).
@@ -510,8 +510,8 @@ int& Checker::slot(int p, int q) {
     if (pair_slot_.empty()) pair_slot_.assign(static_cast<std::size_t>(nb) * nb, -1);
     slot = &pair_slot_[static_cast<std::size_t>(p) * nb + q];
   } else {
-    std::uint64_t key = (static_cast<std::uint64_t>(p) << 32) | static_cast<std::uint32_t>(q);
-    slot = &pair_map_.try_emplace(key, -1).first->second;  // references stay valid on rehash
+    pair_rows_.resize(pc_.size());
+    slot = &pair_rows_(p, q);  // valid until the next insertion: classify() inserts none
   }
   if (*slot != -1) return *slot;
   pairs_.emplace_back();

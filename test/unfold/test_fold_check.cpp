@@ -4,6 +4,7 @@
 #include <boost/test/unit_test.hpp>
 
 #include <limits>
+#include <map>
 
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/intersections.h>
@@ -17,6 +18,7 @@
 #include "dcshell/read_mesh.h"
 #include "dcshell/unfold.h"
 #include "unfold/box_sweep.h"
+#include "unfold/pair_slots.h"
 #include "unfold_test_util.h"
 
 using namespace dcshell;
@@ -545,10 +547,6 @@ BOOST_AUTO_TEST_CASE(fold_budget_scales_with_faces_and_saturates) {
   BOOST_TEST(scaled_fold_work(huge, 1000) <= huge);
 }
 
-// The folding check's broad phase (src/unfold/box_sweep.h) reports exactly the pairs of closed
-// boxes CGAL's box_self_intersection_d reports, sorted, also when boxes only touch (equal
-// coordinates on a grid), share low x, and move past each other between calls (the sweep keeps
-// its order from the previous call). A pair it skipped would never be examined by the check.
 BOOST_AUTO_TEST_CASE(fold_check_second_order_agrees_with_the_first_order_check) {
   // The second-order steps and the early stop at pairs that can never be proved up to t = 1 must
   // give the first-order check's verdict on every net (a wrong bound would verify a net the
@@ -588,6 +586,10 @@ BOOST_AUTO_TEST_CASE(fold_check_second_order_agrees_with_the_first_order_check) 
   BOOST_TEST(steps_second < steps_first);
 }
 
+// The folding check's broad phase (src/unfold/box_sweep.h) reports exactly the pairs of closed
+// boxes CGAL's box_self_intersection_d reports, sorted, also when boxes only touch (equal
+// coordinates on a grid), share low x, and move past each other between calls (the sweep keeps
+// its order from the previous call). A pair it skipped would never be examined by the check.
 BOOST_AUTO_TEST_CASE(fold_check_broad_phase_finds_every_meeting_pair_of_boxes) {
   using Box3 = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
   unfold_detail::BoxSweep sweep;
@@ -657,4 +659,37 @@ BOOST_AUTO_TEST_CASE(fold_fallback_proves_every_vulpix_dc_shell_net) {
   // Vulpix's shell 9 (366 faces): no net within the 25% slack folds along the straight line;
   // one 1.5x the best hull area does.
   expect_every_dc_shell_net_verified("Vulpix", 12);
+}
+
+// The pair slots of large nets (src/unfold/pair_slots.h) behave as a map from (p, q) to a slot:
+// a new pair reads -1, a written slot reads back after any later insertions (rows grow in the
+// middle), and pairs (p, q) and (q, p) are distinct. A lost or shared slot would classify a pair
+// twice or skip it.
+BOOST_AUTO_TEST_CASE(fold_check_pair_slots_act_as_a_map) {
+  unfold_detail::PairSlots slots;
+  std::map<std::pair<int, int>, int> model;
+  std::uint64_t state = 987654321;
+  auto next = [&](int n) {
+    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
+    return static_cast<int>((state >> 33) % static_cast<std::uint64_t>(n));
+  };
+  const int pieces = 300;
+  slots.resize(pieces);
+  int inserted = 0;
+  for (int k = 0; k < 20000; ++k) {
+    const int p = next(pieces), q = next(pieces);
+    int& s = slots(p, q);
+    auto it = model.find({p, q});
+    if (it == model.end()) {
+      BOOST_TEST(s == -1);
+      s = k;
+      model[{p, q}] = k;
+      ++inserted;
+    } else {
+      BOOST_TEST(s == it->second);
+    }
+  }
+  slots.resize(10);  // never shrinks
+  for (const auto& [pq, value] : model) BOOST_TEST(slots(pq.first, pq.second) == value);
+  BOOST_TEST(inserted > 10000);  // most draws are new pairs: the rows grow in the middle
 }
