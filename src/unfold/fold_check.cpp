@@ -444,6 +444,7 @@ class Checker {
 void Checker::build_pieces() {
   const int nb = static_cast<int>(m_.body_root.size());
   pc_.assign(nb, {});
+  if (nb > kDensePieces) pair_rows_.resize(nb);  // slot(): the dense table is too large
   double eps = 1e-12 * scale_;
   for (int b = 0; b < nb; ++b) {
     Piece& P = pc_[b];
@@ -510,7 +511,6 @@ int& Checker::slot(int p, int q) {
     if (pair_slot_.empty()) pair_slot_.assign(static_cast<std::size_t>(nb) * nb, -1);
     slot = &pair_slot_[static_cast<std::size_t>(p) * nb + q];
   } else {
-    pair_rows_.resize(pc_.size());
     slot = &pair_rows_(p, q);  // valid until the next insertion: classify() inserts none
   }
   if (*slot != -1) return *slot;

@@ -25,6 +25,13 @@ using namespace dcshell;
 using namespace dcshell::test;
 
 namespace {
+// Small deterministic generator (Knuth's MMIX LCG) for the randomised tests.
+struct Lcg {
+  std::uint64_t state;
+  explicit Lcg(std::uint64_t seed) : state(seed) {}
+  std::uint64_t next() { return state = state * 6364136223846793005ULL + 1442695040888963407ULL; }
+  double uniform() { return static_cast<double>(next() >> 11) / 9007199254740992.0; }  // [0, 1)
+};
 
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 const double deg = M_PI / 180;
@@ -593,11 +600,8 @@ BOOST_AUTO_TEST_CASE(fold_check_second_order_agrees_with_the_first_order_check) 
 BOOST_AUTO_TEST_CASE(fold_check_broad_phase_finds_every_meeting_pair_of_boxes) {
   using Box3 = CGAL::Box_intersection_d::Box_with_info_d<double, 3, int>;
   unfold_detail::BoxSweep sweep;
-  std::uint64_t state = 12345;
-  auto next = [&] {  // small deterministic generator
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<double>(state >> 11) / 9007199254740992.0;
-  };
+  Lcg rng(12345);
+  auto next = [&] { return rng.uniform(); };
   const int n = 120;
   std::vector<double> centre(3 * n), half(3 * n), lo(3 * n), hi(3 * n);
   for (int i = 0; i < 3 * n; ++i) centre[i] = std::floor(next() * 20), half[i] = std::floor(next() * 3);
@@ -668,11 +672,8 @@ BOOST_AUTO_TEST_CASE(fold_fallback_proves_every_vulpix_dc_shell_net) {
 BOOST_AUTO_TEST_CASE(fold_check_pair_slots_act_as_a_map) {
   unfold_detail::PairSlots slots;
   std::map<std::pair<int, int>, int> model;
-  std::uint64_t state = 987654321;
-  auto next = [&](int n) {
-    state = state * 6364136223846793005ULL + 1442695040888963407ULL;
-    return static_cast<int>((state >> 33) % static_cast<std::uint64_t>(n));
-  };
+  Lcg rng(987654321);
+  auto next = [&](int n) { return static_cast<int>(rng.next() >> 33) % n; };
   const int pieces = 300;
   slots.resize(pieces);
   int inserted = 0;
