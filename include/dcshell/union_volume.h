@@ -25,8 +25,11 @@ struct UnionVolume {
   bool exact_fallback = false;///< the interval filter was too loose; value is the exact rational rounded
   bool fixed_point = false;   ///< summed on a fixed-point grid of exact vertices (about 30 digits)
   UnionMethod method = UnionMethod::nerve;  ///< the one that produced `value` (never automatic)
-  std::size_t terms = 0;      ///< nerve: inclusion–exclusion terms with a common interior;
-                              ///< decomposition: convex pieces
+  std::size_t terms = 0;      ///< terms summed: inclusion–exclusion terms with a common interior
+                              ///< (nerve), convex pieces and the intersections subtracted from
+                              ///< them (decomposition)
+  std::size_t nerve_polytopes = 0;  ///< polytopes whose share the nerve walk summed (all of them
+                                    ///< for nerve; the decomposition took the others)
   std::size_t max_clique = 0; ///< largest set of polytopes sharing interior that the nerve walk met
                               ///< (a lower bound when it gave way to the decomposition)
 };
@@ -37,11 +40,14 @@ struct UnionVolume {
 ///   are enumerated depth-first, pruning as soon as the running intersection is empty. Cheapest
 ///   when few polytopes share a point, but a region covered by k polytopes costs 2^k terms;
 /// - a decomposition of the union into interior-disjoint convex pieces (each polytope minus
-///   the larger ones it overlaps, split along their faces): polynomial whatever the depth.
-/// `automatic` walks the nerve and switches to the decomposition once the walk holds more than
+///   the larger ones it overlaps, split along their faces; against the last one a piece meets,
+///   the piece minus their intersection): polynomial whatever the depth.
+/// Both give each polytope the same share (itself minus the larger polytopes it overlaps; the
+/// walk visits the polytopes smallest first). `automatic` walks the nerve and hands the
+/// polytopes it has not finished to the decomposition once the walk holds more than
 /// 2·(polytopes + candidate pairs) + 256 terms, or once its intersections of three or more
 /// polytopes have cost more than twice the pairwise ones (counted as vertices × planes
-/// tested): a deterministic rule. Terms are summed in interval arithmetic, then with every
+/// tested): a deterministic rule, and the walk's finished shares are kept. Terms are summed in interval arithmetic, then with every
 /// vertex evaluated exactly, then on a fixed-point grid (below); only when the enclosure is
 /// still wider than `max_relative_error` of the value are exact rationals used.
 UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max_relative_error = 1e-12,

@@ -75,6 +75,7 @@ int run_volume_loss(int argc, char** argv) {
         .field("union_fixed_point", loss.union_stats.fixed_point)
         .field("union_method", to_string(loss.union_stats.method))
         .field("union_terms", loss.union_stats.terms)
+        .field("union_nerve_polytopes", loss.union_stats.nerve_polytopes)
         .field("max_overlap_depth", loss.union_stats.max_clique);
     write_certification(json, rep, names);
     json.field("time_s", seconds_since(t0));

@@ -21,12 +21,41 @@ struct Term {
   bool plus = true;
 };
 
+// The polytopes by decreasing volume (stable: ties by index). Both methods give polytope i the
+// share vol(P_i minus the larger polytopes it overlaps): the decomposition cuts the larger ones
+// out of it, and the nerve walk, which visits the polytopes smallest first, collects the
+// subsets whose first member is i, whose signed sum is that share. So the walk can hand over to
+// the decomposition at any polytope without losing what it summed before.
+struct VolumeOrder {
+  std::vector<std::size_t> order, rank;  // order[rank[i]] = i
+  // Per polytope, the overlapping neighbours larger than it, in walk order (decreasing rank).
+  std::vector<std::vector<std::size_t>> larger;
+};
+
+VolumeOrder volume_order(const std::vector<ExactPolytope>& polys, const std::vector<std::vector<std::size_t>>& later) {
+  const std::size_t n = polys.size();
+  VolumeOrder v{std::vector<std::size_t>(n), std::vector<std::size_t>(n), std::vector<std::vector<std::size_t>>(n)};
+  std::vector<double> vol(n);
+  for (std::size_t i = 0; i < n; ++i) vol[i] = approximate_volume(polys[i]);
+  std::iota(v.order.begin(), v.order.end(), std::size_t(0));
+  std::stable_sort(v.order.begin(), v.order.end(), [&](std::size_t a, std::size_t b) { return vol[a] > vol[b]; });
+  for (std::size_t r = 0; r < n; ++r) v.rank[v.order[r]] = r;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j : later[i]) {
+      const auto [small, big] = v.rank[i] > v.rank[j] ? std::pair(i, j) : std::pair(j, i);
+      v.larger[small].push_back(big);
+    }
+  for (auto& l : v.larger) std::sort(l.begin(), l.end(), [&](std::size_t a, std::size_t b) { return v.rank[a] > v.rank[b]; });
+  return v;
+}
+
 // Depth-first walk over the subsets with a common interior, collecting their intersections
-// with the inclusion–exclusion sign. Stops (`abandoned`) once it holds `budget` terms or its
-// deep intersections pass `work_budget`: deep overlaps make the nerve exponential, and the
-// decomposition below then takes over.
+// with the inclusion–exclusion sign, polytope by polytope in walk order. Stops (`abandoned`)
+// once it holds `budget` terms or its deep intersections pass `work_budget`: deep overlaps make
+// the nerve exponential, and the decomposition below then takes the polytopes not finished.
 struct NerveWalk {
   const std::vector<ExactPolytope>& polys;
+  const VolumeOrder& vo;
   const std::vector<std::vector<std::size_t>>& later;  // overlapping neighbours with larger index
   // Known pairwise intersections, parallel to `later` (null: compute them).
   const std::vector<std::vector<const ExactPolytope*>>* pair_region;
@@ -37,15 +66,17 @@ struct NerveWalk {
   std::size_t max_clique = 0;
   bool abandoned = false;
 
-  // `cur` = intersection of the chosen set (size `depth`), `cands` = indices that overlap every
-  // member and come after the last one.
+  // `cur` = intersection of the chosen set (size `depth`), `cands` = polytopes that overlap
+  // every member and come after the last one in walk order (in that order).
   void walk(const ExactPolytope& cur, std::size_t depth, const std::vector<std::size_t>& cands, std::size_t first) {
+    const auto after = [&](std::size_t a, std::size_t b) { return vo.rank[a] > vo.rank[b]; };
     for (std::size_t c = 0; c < cands.size() && !abandoned; ++c) {
       std::size_t k = cands[c];
       ExactPolytope next;
       if (depth == 1 && pair_region) {
-        const auto& l = later[first];
-        next = *(*pair_region)[first][std::size_t(std::lower_bound(l.begin(), l.end(), k) - l.begin())];
+        const std::size_t a = std::min(first, k), b = std::max(first, k);
+        const auto& l = later[a];
+        next = *(*pair_region)[a][std::size_t(std::lower_bound(l.begin(), l.end(), b) - l.begin())];
       } else {
         // An intersection tests the vertices of `cur` against the faces of the next polytope.
         work += double(cur.vertices.size()) * double(polys[k].faces.size());
@@ -58,7 +89,7 @@ struct NerveWalk {
       if (next.empty()) continue;
       std::vector<std::size_t> rest;
       for (std::size_t d = c + 1; d < cands.size(); ++d)
-        if (std::binary_search(later[k].begin(), later[k].end(), cands[d])) rest.push_back(cands[d]);
+        if (std::binary_search(vo.larger[k].begin(), vo.larger[k].end(), cands[d], after)) rest.push_back(cands[d]);
       if (rest.empty()) {
         add(std::move(next), depth + 1);
       } else {
@@ -75,44 +106,55 @@ struct NerveWalk {
     terms.push_back({std::move(p), depth % 2 == 1});
     max_clique = std::max(max_clique, depth);
   }
+  // Polytope i's share; false (and nothing of it kept) when the walk ran out of budget in it.
+  bool share(std::size_t i) {
+    const std::size_t mark = terms.size();
+    add(polys[i], 1);
+    if (!abandoned && !vo.larger[i].empty()) walk(polys[i], 1, vo.larger[i], i);
+    if (abandoned) terms.erase(terms.begin() + std::ptrdiff_t(mark), terms.end());
+    return !abandoned;
+  }
 };
 
-// Interior-disjoint convex pieces whose union is the union of the polytopes: each polytope
-// minus the ones before it in decreasing volume (a part nested in a larger one then leaves no
-// piece at all). Q \ C is split along the faces of Q ∩ C that come from C, so every piece is
-// a convex polytope whose vertices meet three input planes, and all terms are positive: the
-// interval sum stays tight however deep the overlaps are.
-std::vector<ExactPolytope> disjoint_pieces(const std::vector<ExactPolytope>& polys,
-                                           const std::vector<std::vector<std::size_t>>& neighbours) {
+// Terms whose signed sum is the share of every polytope `todo` marks, without the nerve: the
+// polytope minus the larger ones it overlaps (a part nested in a larger one then leaves
+// nothing). Q \ C is split along the faces of Q ∩ C that come from C, so every piece is a
+// convex polytope whose vertices meet three input planes — except against the last polytope a
+// piece meets (no later one's box reaches it): there Q \ C counts as +Q − (Q ∩ C), one
+// subtraction instead of a split into as many pieces as Q ∩ C has faces from C (a round hull
+// has a hundred). The sum stays one level deep, not an alternating sum over cliques.
+std::vector<Term> decomposition_terms(const std::vector<ExactPolytope>& polys, const VolumeOrder& vo,
+                                      const std::vector<char>& todo) {
   constexpr int kOwn = 0, kCutter = 1;
   auto retag = [](ExactPolytope p, int tag) {
     for (auto& f : p.faces) f.tag = tag;
     return p;
   };
-  const std::size_t n = polys.size();
-  std::vector<double> vol(n);
-  for (std::size_t i = 0; i < n; ++i) vol[i] = approximate_volume(polys[i]);
-  std::vector<std::size_t> order(n), rank(n);
-  std::iota(order.begin(), order.end(), std::size_t(0));
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return vol[a] > vol[b]; });
-  for (std::size_t r = 0; r < n; ++r) rank[order[r]] = r;
-
-  std::vector<ExactPolytope> pieces;
-  for (std::size_t i : order) {
-    if (polys[i].empty()) continue;
-    std::vector<std::size_t> before;
-    for (std::size_t j : neighbours[i])
-      if (rank[j] < rank[i] && !polys[j].empty()) before.push_back(j);
-    std::sort(before.begin(), before.end(), [&](std::size_t a, std::size_t b) { return rank[a] < rank[b]; });
+  std::vector<Term> terms;
+  for (std::size_t i : vo.order) {
+    if (!todo[i] || polys[i].empty()) continue;
+    // Largest first.
+    const std::vector<std::size_t> before(vo.larger[i].rbegin(), vo.larger[i].rend());
+    std::vector<CGAL::Bbox_3> boxes;
+    for (std::size_t j : before) boxes.push_back(bbox(polys[j]));
     std::vector<ExactPolytope> mine{retag(polys[i], kOwn)};
-    for (std::size_t j : before) {
-      const ExactPolytope cutter = retag(polys[j], kCutter);
-      const CGAL::Bbox_3 cbox = bbox(cutter);
+    for (std::size_t c = 0; c < before.size(); ++c) {
+      const ExactPolytope cutter = retag(polys[before[c]], kCutter);
       std::vector<ExactPolytope> next;
       for (auto& q : mine) {
-        ExactPolytope r = CGAL::do_overlap(bbox(q), cbox) ? intersect(q, cutter) : ExactPolytope{};
+        const CGAL::Bbox_3 qbox = bbox(q);
+        ExactPolytope r = CGAL::do_overlap(qbox, boxes[c]) ? intersect(q, cutter) : ExactPolytope{};
         if (r.empty()) {
           next.push_back(std::move(q));
+          continue;
+        }
+        // No face of C bounds Q ∩ C: Q lies inside C and leaves nothing.
+        if (std::none_of(r.faces.begin(), r.faces.end(), [](const auto& f) { return f.tag == kCutter; })) continue;
+        const bool last = std::none_of(boxes.begin() + std::ptrdiff_t(c) + 1, boxes.end(),
+                                       [&](const CGAL::Bbox_3& b) { return CGAL::do_overlap(qbox, b); });
+        if (last) {
+          terms.push_back({std::move(r), false});
+          terms.push_back({std::move(q), true});
           continue;
         }
         // R's faces tagged kCutter are C's planes bounding Q ∩ C inside Q: Q \ C is the
@@ -129,9 +171,9 @@ std::vector<ExactPolytope> disjoint_pieces(const std::vector<ExactPolytope>& pol
       mine = std::move(next);
       if (mine.empty()) break;
     }
-    for (auto& q : mine) pieces.push_back(std::move(q));
+    for (auto& q : mine) terms.push_back({std::move(q), true});
   }
-  return pieces;
+  return terms;
 }
 
 // Σ ±vol(term) in intervals, from the coordinates' current approximations, then after
@@ -253,19 +295,9 @@ void sum_terms(const std::vector<Term>& terms, const UnionEnough& enough, bool e
   exact_sum_of(terms, out, value);
 }
 
-std::vector<Term> decomposition_terms(const std::vector<ExactPolytope>& polys,
-                                      const std::vector<std::vector<std::size_t>>& later) {
-  // Symmetric neighbour lists: the decomposition visits the polytopes by volume.
-  std::vector<std::vector<std::size_t>> neighbours(polys.size());
-  for (std::size_t i = 0; i < polys.size(); ++i)
-    for (std::size_t j : later[i]) neighbours[i].push_back(j), neighbours[j].push_back(i);
-  std::vector<Term> terms;
-  for (auto& p : disjoint_pieces(polys, neighbours)) terms.push_back({std::move(p), true});
-  return terms;
-}
-
-// Nerve walk while it stays within budget (shallow overlaps: fewest exact constructions), else
-// the disjoint decomposition; then the sum, refined until `enough` (sum_terms).
+// Nerve walk while it stays within budget (shallow overlaps: fewest exact constructions), the
+// decomposition for the polytopes it did not finish; then the sum, refined until `enough`
+// (sum_terms).
 UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector<std::vector<std::size_t>>& later,
                       const std::vector<std::vector<const ExactPolytope*>>* pair_region, const UnionEnough& enough,
                       UnionMethod method, bool exact_only, ExactRational* value) {
@@ -283,23 +315,22 @@ UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t j : later[i]) pair_work += double(polys[i].vertices.size()) * double(polys[j].faces.size());
   const double work_budget = method == UnionMethod::nerve ? HUGE_VAL : 2 * pair_work + 1e5;
-  if (budget > 0) {
-    NerveWalk w{polys, later, pair_region, budget, work_budget, 0.0, {}};
-    for (std::size_t i = 0; i < n && !w.abandoned; ++i) {
-      if (polys[i].empty()) continue;
-      w.add(polys[i], 1);
-      if (!later[i].empty()) w.walk(polys[i], 1, later[i], i);
-    }
-    out.max_clique = w.max_clique;
-    if (!w.abandoned) {
-      out.method = UnionMethod::nerve;
-      out.terms = w.terms.size();
-      sum_terms(w.terms, enough, exact_only, out, value);
-      return out;
-    }
+  const VolumeOrder vo = volume_order(polys, later);
+  NerveWalk w{polys, vo, later, pair_region, budget, work_budget, 0.0, {}};
+  // Smallest first; from the first polytope the walk cannot finish, the decomposition.
+  std::vector<char> todo(n, 0);
+  for (std::size_t r = n; r-- > 0;) {
+    const std::size_t i = vo.order[r];
+    if (polys[i].empty()) continue;
+    if (budget == 0 || w.abandoned || !w.share(i)) todo[i] = 1; else ++out.nerve_polytopes;
   }
-  const std::vector<Term> terms = decomposition_terms(polys, later);
-  out.method = UnionMethod::decomposition;
+  out.max_clique = w.max_clique;
+  std::vector<Term> terms = std::move(w.terms);
+  if (w.abandoned || budget == 0) {
+    std::vector<Term> rest = decomposition_terms(polys, vo, todo);
+    terms.insert(terms.end(), std::make_move_iterator(rest.begin()), std::make_move_iterator(rest.end()));
+  }
+  out.method = w.abandoned || budget == 0 ? UnionMethod::decomposition : UnionMethod::nerve;
   out.terms = terms.size();
   sum_terms(terms, enough, exact_only, out, value);
   return out;

@@ -155,6 +155,28 @@ BOOST_AUTO_TEST_CASE(deep_overlap_is_summed_by_the_decomposition) {
   BOOST_TEST(exact_union_volume(fewer) < exact_union_volume(thirty));
 }
 
+BOOST_AUTO_TEST_CASE(walk_hands_unfinished_polytopes_to_the_decomposition) {
+  // Six small boxes in a chain (shallow: the walk, smallest first, finishes them) and ten large
+  // planks through one axis (1023 subsets: the walk runs out of budget there). The planks go to
+  // the decomposition, the boxes' shares stay the walk's, and the total is the nerve's exactly.
+  std::vector<Part> sets = synthetic::plank_star(10, 0.004);
+  for (int k = 0; k < 6; ++k) {
+    const double x = 5 + 0.15 * k;
+    sets.push_back(parts_of({box_points(x, 5, 5, x + 0.2, 5.2, 5.2)})[0]);
+  }
+  const std::vector<ExactPolytope> p = hulls_of(sets);
+  const UnionVolume autom = union_volume(p);
+  BOOST_TEST((autom.method == UnionMethod::decomposition));
+  BOOST_TEST(autom.nerve_polytopes >= 6u);
+  BOOST_TEST(autom.nerve_polytopes < p.size());
+  const UnionVolume nerve = union_volume(p, 1e-12, UnionMethod::nerve);
+  BOOST_TEST(nerve.nerve_polytopes == p.size());
+  BOOST_TEST(std::fabs(nerve.value - autom.value) <= nerve.error_bound + autom.error_bound);
+  BOOST_TEST(exact_union_volume(p) == exact_union_volume(p, nullptr, UnionMethod::nerve));
+  const std::vector<Overlap> o = find_overlaps(p);
+  BOOST_TEST(exact_union_volume(p, &o) == exact_union_volume(p, &o, UnionMethod::nerve));
+}
+
 BOOST_AUTO_TEST_CASE(round_hulls_around_one_point_are_summed_without_rationals) {
   // Six UV spheres of 62 vertices whose centres are at most 0.2 apart: the nerve's alternating
   // sum cancels to a few digits, the decomposition's positive pieces do not. The certified
