@@ -281,7 +281,25 @@ ExactPolytope intersect(const ExactPolytope& a, const ExactPolytope& b) {
   if (a.empty() || b.empty()) return {};
   ExactPolytope r = a;
   IntervalBox box = interval_box(r);
-  for (const auto& f : b.faces) {
+  // b's planes deepest into a first (by how far the centre of a's box lies above each, in
+  // doubles: only the order depends on it). Two round hulls then shrink r to their lens within
+  // a few cuts, and the box test skips most planes after that, where b's own order had every
+  // plane facing a classify all of a's vertices until one cut deep enough.
+  std::vector<std::pair<double, std::size_t>> order(b.faces.size());
+  {
+    const double x = 0.5 * (box.x.inf() + box.x.sup()), y = 0.5 * (box.y.inf() + box.y.sup()),
+                 z = 0.5 * (box.z.inf() + box.z.sup());
+    for (std::size_t i = 0; i < b.faces.size(); ++i) {
+      const IntervalPlane h(b.faces[i].plane);
+      const double pa = CGAL::to_double(h.a), pb = CGAL::to_double(h.b), pc = CGAL::to_double(h.c);
+      const double n = std::sqrt(pa * pa + pb * pb + pc * pc);
+      const double above = n > 0 ? (pa * x + pb * y + pc * z + CGAL::to_double(h.d)) / n : 0.0;
+      order[i] = {std::isfinite(above) ? -above : 0.0, i};
+    }
+    std::sort(order.begin(), order.end());
+  }
+  for (const auto& [depth, i] : order) {
+    const auto& f = b.faces[i];
     // Most planes of a large b miss r: an interval test on r's box skips them without
     // classifying r's vertices, and a plane that passes no vertex costs no copy of r.
     if (box_strictly_below(box, f.plane)) continue;
