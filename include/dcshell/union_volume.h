@@ -47,9 +47,10 @@ struct UnionVolume {
 /// polytopes it has not finished to the decomposition once the walk holds more than
 /// 2·(polytopes + candidate pairs) + 256 terms, or once its intersections of three or more
 /// polytopes have cost more than twice the pairwise ones (counted as vertices × planes
-/// tested): a deterministic rule, and the walk's finished shares are kept. Terms are summed in interval arithmetic, then with every
-/// vertex evaluated exactly, then on a fixed-point grid (below); only when the enclosure is
-/// still wider than `max_relative_error` of the value are exact rationals used.
+/// tested): a deterministic rule, and the walk's finished shares are kept. Terms are summed in
+/// interval arithmetic, then with every vertex evaluated exactly, then on a fixed-point grid
+/// (below); only when the enclosure is still wider than `max_relative_error` of the value are
+/// exact rationals used.
 UnionVolume union_volume(const std::vector<ExactPolytope>& polytopes, double max_relative_error = 1e-12,
                          UnionMethod method = UnionMethod::automatic);
 

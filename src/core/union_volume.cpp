@@ -56,8 +56,9 @@ VolumeOrder volume_order(const std::vector<ExactPolytope>& polys, const std::vec
 struct NerveWalk {
   const std::vector<ExactPolytope>& polys;
   const VolumeOrder& vo;
-  const std::vector<std::vector<std::size_t>>& later;  // overlapping neighbours with larger index
-  // Known pairwise intersections, parallel to `later` (null: compute them).
+  // Known pairwise intersections (null: compute them), found through `later`, the overlapping
+  // neighbours with larger index, to which they are parallel.
+  const std::vector<std::vector<std::size_t>>& later;
   const std::vector<std::vector<const ExactPolytope*>>* pair_region;
   std::size_t budget;       // most terms held
   double work_budget;       // most vertex-plane tests spent on intersections of three or more
@@ -326,11 +327,12 @@ UnionVolume sum_union(const std::vector<ExactPolytope>& polys, const std::vector
   }
   out.max_clique = w.max_clique;
   std::vector<Term> terms = std::move(w.terms);
-  if (w.abandoned || budget == 0) {
+  const bool handed_over = budget == 0 || w.abandoned;
+  if (handed_over) {
     std::vector<Term> rest = decomposition_terms(polys, vo, todo);
     terms.insert(terms.end(), std::make_move_iterator(rest.begin()), std::make_move_iterator(rest.end()));
   }
-  out.method = w.abandoned || budget == 0 ? UnionMethod::decomposition : UnionMethod::nerve;
+  out.method = handed_over ? UnionMethod::decomposition : UnionMethod::nerve;
   out.terms = terms.size();
   sum_terms(terms, enough, exact_only, out, value);
   return out;
