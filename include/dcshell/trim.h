@@ -13,6 +13,9 @@ struct TrimStats {
   std::size_t nudged_vertices = 0;   ///< rounded vertices moved inward to restore a constraint
   std::size_t dropped_vertices = 0;  ///< vertices that could not be restored (sliver) and were left out
   std::size_t merged_vertices = 0;   ///< vertices left out as closer than kMergeDistance to a kept one
+  /// Vertices the cuts made within kMergeDistance of the hull of the others, left out
+  /// (prune_near_redundant_points); build_shells adds the part's hull vertices it left out so.
+  std::size_t flat_vertices = 0;
 };
 
 /// Rounded vertices closer than this fraction of the shell's bounding-box diagonal to an earlier
@@ -26,7 +29,8 @@ constexpr double kMergeDistance = 1e-7;
 /// rounded: each vertex is rounded to doubles; a rounded vertex that falls outside a cut plane
 /// or outside the hull (decided exactly) is moved toward the shell's interior by the smallest
 /// step that restores every constraint; the result is the convex hull (exact predicates) of
-/// those points, less those within kMergeDistance of another. So the written shell is exactly
+/// those points, less those within kMergeDistance of another and the vertices the cuts made within
+/// kMergeDistance of the hull of the others. So the written shell is exactly
 /// convex and exactly inside each of its halfspaces, hence interior-disjoint from every
 /// neighbour separated by a plane or by the hulls themselves. Returns an empty mesh when nothing
 /// of positive volume remains.

@@ -92,6 +92,7 @@ void write_report(std::ostream& os, const ShellResult& r, const std::vector<Part
     json.end_array();
     json.field("rounding_nudged_vertices", s.trim.nudged_vertices);
     json.field("merged_close_vertices", s.trim.merged_vertices);
+    json.field("dropped_flat_vertices", s.trim.flat_vertices);
     if (s.remeshed)
       json.key("remesh")
           .begin_object()

@@ -4,6 +4,7 @@
 
 #include <CGAL/Delaunay_triangulation_2.h>
 #include <CGAL/Triangulation_vertex_base_with_info_2.h>
+#include <CGAL/boost/graph/iterator.h>
 #include <CGAL/convex_hull_3.h>
 
 #include <algorithm>
@@ -154,6 +155,48 @@ Mesh convex_hull_mesh(const std::vector<Point3>& points) {
   for (auto v : order) vs.push_back(hull.add_vertex(raw.point(v)));
   for (const auto& t : tris) hull.add_face(vs[t[0]], vs[t[1]], vs[t[2]]);
   return hull;
+}
+
+std::vector<Point3> prune_near_redundant_points(std::vector<Point3> points, double delta, const std::vector<Point3>& keep,
+                                               std::size_t* pruned) {
+  // The distance of a vertex to the hull of the others is at most its distance to any segment
+  // or triangle of its neighbours (all inside that hull), so one that close can go. Neighbours
+  // of a pruned vertex wait for the next round (their bound was measured against it); each round
+  // gets a quarter of delta, so the pruned hull is within delta of the hull of the points.
+  constexpr int kRounds = 4;
+  const double d2 = (delta / kRounds) * (delta / kRounds);
+  for (int round = 0; round < kRounds && delta > 0; ++round) {
+    const Mesh hull = convex_hull_mesh(points);
+    if (round == 0) points = mesh_points(hull);  // only the hull's vertices, whatever happens next
+    if (hull.number_of_vertices() <= 4) break;
+    std::vector<char> drop(hull.number_of_vertices(), 0), locked(hull.number_of_vertices(), 0);
+    std::vector<Point3> link;
+    bool any = false;
+    for (auto v : hull.vertices()) {
+      const Point3& q = hull.point(v);
+      if (locked[v.idx()] || std::binary_search(keep.begin(), keep.end(), q)) continue;
+      link.clear();
+      for (auto w : CGAL::vertices_around_target(hull.halfedge(v), hull)) link.push_back(hull.point(w));
+      bool close = false;
+      for (std::size_t i = 0; i < link.size() && !close; ++i)
+        for (std::size_t j = i + 1; j < link.size() && !close; ++j) {
+          close = CGAL::squared_distance(q, Epick::Segment_3(link[i], link[j])) < d2;
+          for (std::size_t k = j + 1; k < link.size() && !close; ++k)
+            close = !CGAL::collinear(link[i], link[j], link[k]) &&
+                    CGAL::squared_distance(q, Epick::Triangle_3(link[i], link[j], link[k])) < d2;
+        }
+      if (!close) continue;
+      drop[v.idx()] = 1;
+      any = true;
+      for (auto w : CGAL::vertices_around_target(hull.halfedge(v), hull)) locked[w.idx()] = 1;
+    }
+    if (!any) break;
+    points.clear();
+    for (auto v : hull.vertices())
+      if (!drop[v.idx()]) points.push_back(hull.point(v));
+      else if (pruned) ++*pruned;
+  }
+  return points;
 }
 
 std::vector<Point3> mesh_points(const Mesh& mesh) {

@@ -89,10 +89,20 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   // Hulls are remeshed before cutting and shells after: each stage may grow its input by
   // sqrt(1 + R) - 1, so the two together stay near R (the paper's 5% is one bound).
   remesh_opt.max_volume_increase = std::sqrt(1.0 + opt.max_volume_increase) - 1.0;
+  // Input points within rounding of the hull of the others (a vertex 1e-11 off the line of an
+  // edge) make sliver faces that no net can fold along; the hulls that are cut leave them out.
+  // They lie within kMergeDistance of the part's size inside the original hulls, against which
+  // the volume loss is measured.
+  std::vector<std::size_t> pruned(n, 0);
+  std::vector<std::vector<Point3>> hull_points(n);
   for (std::size_t i = 0; i < n; ++i) {
     progress("hulls", i, n);
     original[i] = exact_hull(parts[i].points, int(i));
-    hull_mesh[i] = convex_hull_mesh(parts[i].points);
+    const CGAL::Bbox_3 box = CGAL::bbox_3(parts[i].points.begin(), parts[i].points.end());
+    const double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
+                                  CGAL::square(box.zmax() - box.zmin()));
+    hull_points[i] = prune_near_redundant_points(parts[i].points, kMergeDistance * diag, {}, &pruned[i]);
+    hull_mesh[i] = convex_hull_mesh(hull_points[i]);
   }
   if (opt.simplify_iterations > 0) {
     // Steiner points in a hull's facets would mostly be cut away, and they spend the faces the
@@ -108,7 +118,9 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     });
   }
   for (std::size_t i = 0; i < n; ++i)
-    hull[i] = opt.simplify_iterations > 0 ? exact_hull(mesh_points(hull_mesh[i]), int(i)) : original[i];
+    hull[i] = opt.simplify_iterations > 0 ? exact_hull(mesh_points(hull_mesh[i]), int(i))
+              : pruned[i] > 0            ? exact_hull(hull_points[i], int(i))
+                                         : original[i];
   clock.lap("hulls");
 
   // --- overlaps and nesting
@@ -148,6 +160,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
       keep.push_back(sh.cuts.back().plane);
     }
     sh.mesh = trim_shell(hull[i], keep, &sh.trim);
+    sh.trim.flat_vertices += pruned[i];  // the hull's, left out above, and the cut's
     if (sh.mesh.number_of_faces() == 0) {
       res.vanished.push_back(i);
       continue;

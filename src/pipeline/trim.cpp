@@ -112,7 +112,15 @@ Mesh trim_shell(const ExactPolytope& hull, const std::vector<CutPlane>& keep_bel
   for (const auto& q : kept)
     for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], q[d]), hi[d] = std::max(hi[d], q[d]);
   const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
-  return convex_hull_mesh(merge_close_points(kept, kMergeDistance * diag, &st.merged_vertices));
+  kept = merge_close_points(kept, kMergeDistance * diag, &st.merged_vertices);
+  std::vector<Point3> hull_points;
+  for (const auto& v : hull.vertices)
+    hull_points.emplace_back(CGAL::to_double(v.x()), CGAL::to_double(v.y()), CGAL::to_double(v.z()));
+  std::sort(hull_points.begin(), hull_points.end());
+  // The cut's own vertices within that distance of the hull of the others go too (the hull's are
+  // where the part or the remesher put them: its 1e-9 domes and lifted splits are near-flat on
+  // purpose): a cut ending a few ulps off the line of a hull edge leaves slivers along it.
+  return convex_hull_mesh(prune_near_redundant_points(std::move(kept), kMergeDistance * diag, hull_points, &st.flat_vertices));
 }
 
 }  // namespace dcshell

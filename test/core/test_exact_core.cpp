@@ -8,6 +8,7 @@
 #include "dcshell/certify.h"
 #include "dcshell/convex_hull.h"
 #include "dcshell/exact_polytope.h"
+#include "dcshell/mesh_volume.h"
 #include "dcshell/overlaps.h"
 #include "dcshell/union_volume.h"
 #include "dcshell/volume_loss.h"
@@ -52,6 +53,31 @@ BOOST_AUTO_TEST_CASE(clip_keeps_negative_side_and_creates_cap) {
   // A plane through a face keeps everything; its opposite keeps nothing.
   BOOST_TEST(exact_volume(clip(cube, exact_plane({Eigen::Vector3d(1, 0, 0), 1.0}), 1)) == ExactRational(1));
   BOOST_TEST(clip(cube, exact_plane({Eigen::Vector3d(-1, 0, 0), -1.0}), 1).empty());
+}
+
+BOOST_AUTO_TEST_CASE(pruning_leaves_out_vertices_within_rounding_of_the_others_hull) {
+  // A unit cube with a point 1e-11 outside the middle of an edge (its two faces become slivers
+  // along the edge), two points 1e-12 above the top face (near-flat cones) and one point 1e-3
+  // outside a face (a real corner): the cube's corners and the real one stay, the hull loses at
+  // most delta, and a point in `keep` stays whatever its distance.
+  std::vector<Point3> pts;
+  for (int i = 0; i < 8; ++i) pts.emplace_back(i & 1, (i >> 1) & 1, (i >> 2) & 1);
+  pts.push_back({0.5, -1e-11, -1e-11});
+  pts.push_back({0.5, 0.5, 1 + 1e-12});
+  pts.push_back({0.25, 0.625, 1 + 1e-12});
+  pts.push_back({-1e-3, 0.5, 0.5});
+  pts.push_back({0.5, 0.5, 0.5});  // interior: never a hull vertex
+  BOOST_TEST_REQUIRE(convex_hull_mesh(pts).number_of_vertices() == 12u);
+  std::size_t pruned = 0;
+  std::vector<Point3> out = prune_near_redundant_points(pts, 1e-7, {}, &pruned);
+  BOOST_TEST(pruned == 3u);
+  BOOST_TEST(out.size() == 9u);
+  for (const Point3& q : out) BOOST_TEST((std::find(pts.begin(), pts.end(), q) != pts.end()));
+  BOOST_TEST(std::abs(CGAL::to_double(six_signed_volume(convex_hull_mesh(out))) / 6 - (1 + 1e-3 / 3)) < 1e-9);
+  std::vector<Point3> keep = {pts[8]};
+  BOOST_TEST(prune_near_redundant_points(pts, 1e-7, keep).size() == 10u);
+  // Far below the distance: nothing goes.
+  BOOST_TEST(prune_near_redundant_points(pts, 1e-13).size() == 12u);
 }
 
 BOOST_AUTO_TEST_CASE(touching_boxes_do_not_overlap) {
