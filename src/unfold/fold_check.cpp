@@ -420,6 +420,7 @@ class Checker {
   // angular speed and acceleration).
   double path_angle(const PairInfo& pi) const { return pi.Sp + pi.Sq; }
   bool near_fixed(const Piece& Q, int i, const PairInfo& pi, double S) const;
+  bool near_common_line(int p, int q, const PairInfo& pi) const;
   bool cone_arc(int p, const Vec2& at, Arc* arc) const;
   // The hull corner after corner i of piece p in direction step (+1 / -1) that is farther than
   // the contact tolerance from it: a hull side of 1e-11 has a direction made of rounding noise,
@@ -640,6 +641,11 @@ void Checker::classify(int p, int q, PairInfo& pi) {
       return;
     }
   }
+  if (near_common_line(p, q, pi)) {
+    pi.kind = PairKind::hinge;
+    pi.done = true;
+    return;
+  }
   if (fixed_at.size() == 1 && strict_at.size() == 1) {  // the cone needs the exact apex
     Arc arc;
     if (cone_arc(p, fixed_at[0], &arc) && cone_arc(q, fixed_at[0], &arc)) {
@@ -649,6 +655,51 @@ void Checker::classify(int p, int q, PairInfo& pi) {
     }
   }
   pi.window = end_window(p, q, pi);
+}
+
+// Pieces joined through a sliver (a shell face 1e-10 wide between them, or along their hinge)
+// turn about several hinges on nearly one line, so no two common corners lie on every hinge
+// exactly and their hulls touch along it in the flat net. The line argument above holds up to a
+// bound. Let l be the hinge line with the largest turn and x a point on it. A hinge b's rotation
+// and the same rotation about l differ at y by at most |angle_b| (delta_b + (1 + |angle_b|)
+// theta_b |y - x|) (delta_b: distance of x to b's line; theta_b: the angle between the lines;
+// Rodrigues' formula), and rotations about l keep |y - x|, so along the chain of hinges between
+// the pieces the errors add. When their sum, over the corners of the piece that moves, stays
+// within the contact tolerance, that piece stays within the tolerance of its rotation about l,
+// which meets the other only on l while the two lie on opposite closed sides of l in the flat net
+// and the summed turn stays below pi: they come that close only along l, as hinged pieces do.
+bool Checker::near_common_line(int p, int q, const PairInfo& pi) const {
+  const double eps = 1e-10 * scale_;
+  int best = -1;
+  for (const auto* side : {&pi.up_p, &pi.up_q})
+    for (int b : *side)
+      if (best < 0 || std::abs(pc_[b].angle) > std::abs(pc_[best].angle)) best = b;
+  if (best < 0 || pc_[best].hinge_u.head<2>().norm() == 0) return false;
+  const Vec2 a = pc_[best].hinge_a.head<2>(), d = pc_[best].hinge_u.head<2>().normalized();
+  auto extent = [&](int piece, double& lo, double& hi) {
+    lo = kInf, hi = -kInf;
+    for (const auto& h : pc_[piece].hull) lo = std::min(lo, cross2(d, h - a)), hi = std::max(hi, cross2(d, h - a));
+  };
+  double lo_p, hi_p, lo_q, hi_q;
+  extent(p, lo_p, hi_p);
+  extent(q, lo_q, hi_q);
+  if (!((hi_p <= eps && lo_q >= -eps) || (hi_q <= eps && lo_p >= -eps))) return false;
+  // Measured from the foot of the smaller piece's centre on l: the relative motion of either
+  // piece against the other is made of the same rotations.
+  const int m = pc_[p].radius <= pc_[q].radius ? p : q;
+  const Vec2 x = a + d * d.dot(pc_[m].centre - a);
+  double reach = 0;
+  for (const auto& h : pc_[m].hull) reach = std::max(reach, (h - x).norm());
+  double dev = 0, turn = 0;
+  for (const auto* side : {&pi.up_p, &pi.up_q})
+    for (int b : *side) {
+      const Vec2 u = pc_[b].hinge_u.head<2>().normalized(), ab = pc_[b].hinge_a.head<2>();
+      const double alpha = std::abs(pc_[b].angle);
+      const double theta = std::asin(std::min(1.0, std::abs(cross2(u, d))));
+      dev += alpha * (std::abs(cross2(u, x - ab)) + (1 + alpha) * theta * reach);
+      turn += (side == &pi.up_q ? 1 : -1) * pc_[b].angle * (u.dot(d) > 0 ? 1 : -1);
+    }
+  return dev <= tol_ && std::abs(turn) < M_PI - 1e-9;
 }
 
 // Plane advancement for a pair at (nearly) zero distance, from the current state t: the largest

@@ -529,6 +529,43 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_nets_with_sliver_faces) {
   BOOST_TEST(verified >= 13);  // 8 before slivers were handled
 }
 
+BOOST_AUTO_TEST_CASE(fold_check_proves_pieces_hinged_through_a_sliver) {
+  // The unit square A, a sliver S = (0,0) (0.5,-w) (1,0) folded on A's side y = 0, and a triangle
+  // C folded on S's side (0,0)-(0.5,-w): A and C turn about two hinges 2w apart in direction, and
+  // their flat pieces touch along y = 0 within w. No two common corners lie on both hinges, and
+  // at their one common corner the wedges touch, so neither the line argument nor the cone
+  // applied: the check crawled at t = 0 (a shell's nearly straight edge chain with a vertex 1e-11
+  // off the line, as trimming used to write, does this). The near-common-line bound proves them;
+  // a relative turn past a half turn still collides.
+  auto sliver_net = [](double w, double a1, double a2) {
+    Net n;
+    n.shell_vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, -w, 0}, {0.25, -1, 0}};
+    n.shell_faces = {{0, 1, 2}, {0, 2, 3}, {0, 4, 1}, {0, 5, 4}};
+    for (auto& t : n.shell_faces) {
+      std::array<Eigen::Vector2d, 3> c;
+      for (int k = 0; k < 3; ++k) c[k] = n.shell_vertices[t[k]].head<2>();
+      n.corners.push_back(c);
+    }
+    n.parent = {-1, 0, 0, 2};
+    auto edge = [](int v0, int v1, int f0, int f1, double a) {
+      Net::Edge e;
+      e.v0 = v0, e.v1 = v1, e.f0 = f0, e.f1 = f1, e.fold = true, e.fold_angle = a;
+      return e;
+    };
+    n.edges = {edge(0, 2, 0, 1, 0.0), edge(0, 1, 0, 2, a1), edge(0, 4, 2, 3, a2)};
+    return n;
+  };
+  for (double w : {1e-10, 1e-11, 1e-3}) {
+    Net net = sliver_net(w, 0.5, 0.4);
+    BOOST_TEST_REQUIRE(find_net_overlaps(net).empty());
+    auto r = check_folding(net);
+    BOOST_TEST(r.verified, "w " << w << ": " << r.message);
+    BOOST_TEST(r.pieces == 3);
+  }
+  auto r = check_folding(sliver_net(1e-10, 2.0, 1.5));
+  BOOST_TEST(!r.verified);
+}
+
 BOOST_AUTO_TEST_CASE(fold_check_proves_every_squirtle_dc_shell_net) {
   // Squirtle's shell 1: sibling pieces touch in the flat net at a corner of their glued chains
   // that lies 1.4e-8 off one hinge line (tolerance 1e-8): not on the hinges, so neither fixed
