@@ -6,7 +6,11 @@ two overlapping UV spheres of 24,864 and 1,512 faces (one part per file). `--dee
 writes the deep-overlap cases of doc/check.md: DIR/planks20 (twenty planks through one axis),
 DIR/boxes128 (128 randomly rotated boxes, seeded), DIR/spheres8 (eight 960-face spheres
 around one point, seeded) and DIR/chain100 (a hundred 960-face spheres, each placed next to one
-of the five before it, like the parts of a segmented organic model; seeded).
+of the five before it, like the parts of a segmented organic model; seeded). `--random-composites
+DIR` writes the robustness set of doc/shell.md: DIR/m000 ... DIR/m119, each 2-13 randomly turned
+boxes, UV spheres, prisms and needles (some duplicated, some with a shrunken copy nested inside),
+at scales 1, 1e-4 or 1e3 and offsets up to 1e5, written with 12 significant digits (so faces that
+were planar are not quite, as in files from other tools); seeded by the folder number.
 
 Every example is a folder with one OBJ per part, except `snowman.obj`, whose connected
 components are the parts. Coordinates are exact decimals so the files are reproducible.
@@ -109,6 +113,70 @@ def deep_overlaps(out_dir):
         write(os.path.join(out_dir, "chain100", "sphere_%03d.obj" % k), [sphere(c, round(rng.uniform(0.6, 0.9), 9), 16, 32)])
 
 
+def prism(r, h, n):
+    """A right prism over a regular n-gon of radius r (a cylinder for large n), centred at 0."""
+    v = []
+    for i in range(n):
+        a = 2 * math.pi * i / n
+        v += [(r * math.cos(a), r * math.sin(a), -h / 2), (r * math.cos(a), r * math.sin(a), h / 2)]
+    v += [(0, 0, -h / 2), (0, 0, h / 2)]
+    f = []
+    for i in range(n):
+        j = (i + 1) % n
+        f += [(2 * i, 2 * j, 2 * j + 1), (2 * i, 2 * j + 1, 2 * i + 1), (2 * n, 2 * j, 2 * i), (2 * n + 1, 2 * i + 1, 2 * j + 1)]
+    return v, f
+
+
+def turned(mesh, angles, shift, scale):
+    """Scaled, turned about x, y and z in that order, then moved."""
+    v, f = mesh
+    out = []
+    for p in v:
+        x, y, z = (c * scale for c in p)
+        for axis, a in enumerate(angles):
+            c, s = math.cos(a), math.sin(a)
+            if axis == 0:
+                y, z = c * y - s * z, s * y + c * z
+            elif axis == 1:
+                x, z = c * x + s * z, -s * x + c * z
+            else:
+                x, y = c * x - s * y, s * x + c * y
+        out.append((x + shift[0], y + shift[1], z + shift[2]))
+    return out, f
+
+
+def random_composites(out_dir, count=120):
+    for m in range(count):
+        rng = random.Random(m)
+        scale = rng.choice([1, 1, 1e-4, 1e3])
+        offset = rng.choice([0, 0, 1e5, -37.5])
+        parts = []
+        for _ in range(rng.randrange(2, 14)):
+            kind = rng.randrange(4)
+            if kind == 0:
+                h = [rng.uniform(0.2, 2) for _ in range(3)]
+                mesh = box((-h[0], -h[1], -h[2]), tuple(h))
+            elif kind == 1:
+                mesh = sphere((0, 0, 0), rng.uniform(0.3, 1.5), rng.randrange(3, 12), rng.randrange(4, 20))
+            elif kind == 2:
+                mesh = prism(rng.uniform(0.1, 1), rng.uniform(0.5, 4), rng.randrange(3, 30))
+            else:  # a needle
+                h = [rng.uniform(0.01, 0.3) for _ in range(2)]
+                mesh = box((-h[0], -h[1], -3), (h[0], h[1], 3))
+            shift = tuple(rng.uniform(-2, 2) * scale + offset for _ in range(3))
+            angles = [rng.choice([0, rng.uniform(0, 6.3)]) for _ in range(3)]
+            parts.append(turned(mesh, angles, shift, scale))
+            r = rng.random()
+            if r < 0.08:
+                parts.append(parts[-1])
+            elif r < 0.15:
+                v, f = parts[-1]
+                c = [sum(p[k] for p in v) / len(v) for k in range(3)]
+                parts.append(([tuple(c[k] + 0.5 * (p[k] - c[k]) for k in range(3)) for p in v], f))
+        for k, p in enumerate(parts):
+            write(os.path.join(out_dir, "m%03d" % m, "p%02d.obj" % k), [p])
+
+
 def main():
     # The paper's controlled study: two bars meeting at an elbow, at several angles.
     bar = box((-0.25, -2.0, -0.25), (0.25, 0.25, 0.25))
@@ -148,7 +216,9 @@ if __name__ == "__main__":
         large_spheres(sys.argv[2])
     elif len(sys.argv) == 3 and sys.argv[1] == "--deep-overlaps":
         deep_overlaps(sys.argv[2])
+    elif len(sys.argv) == 3 and sys.argv[1] == "--random-composites":
+        random_composites(sys.argv[2])
     elif len(sys.argv) == 1:
         main()
     else:
-        sys.exit("usage: make_examples.py [--large-spheres DIR | --deep-overlaps DIR]")
+        sys.exit("usage: make_examples.py [--large-spheres DIR | --deep-overlaps DIR | --random-composites DIR]")
