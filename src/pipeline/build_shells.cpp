@@ -175,12 +175,18 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   if (opt.simplify_iterations > 0) {
     std::vector<Mesh> meshes;
     for (const auto& s : res.shells) meshes.push_back(s.mesh);
-    std::vector<ShellConstraints> cons = neighbour_constraints(meshes);
+    std::vector<std::pair<std::size_t, std::size_t>> unseparated;
+    std::vector<ShellConstraints> cons = neighbour_constraints(meshes, &unseparated);
     for (std::size_t k = 0; k < res.shells.size(); ++k)
       for (const auto& c : res.shells[k].cuts) cons[k].cut_planes.push_back(c.plane);
+    // Two shells no plane was found between could grow into each other: they stay as trimmed
+    // (certified disjoint), rather than the whole result failing its certification.
+    std::vector<char> keep_as_is(res.shells.size(), 0);
+    for (auto [a, b] : unseparated) keep_as_is[a] = keep_as_is[b] = 1;
     progress("remesh", 0, res.shells.size());
     // Shells are independent once their constraints are fixed: one per core.
     parallel_for(res.shells.size(), [&](std::size_t k) {
+      if (keep_as_is[k]) return;
       auto& s = res.shells[k];
       // The faces the hull's simplification saved may buy Steiner points in the shell: up to the
       // faces of the same cuts through the part's original hull (what the plain shell would have).

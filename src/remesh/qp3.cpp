@@ -53,12 +53,26 @@ std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, co
   return extract(CGAL::solve_quadratic_program(p, CGAL::Gmpzf()));
 }
 
+static std::optional<Epeck::Plane_3> separating_plane_within(const std::vector<Point3>& below,
+                                                              const std::vector<Point3>& above,
+                                                              const Eigen::Vector3d& n0, double bound);
+
 std::optional<Epeck::Plane_3> separating_plane_exact(const std::vector<Point3>& below, const std::vector<Point3>& above,
                                                      const Eigen::Vector3d& n0) {
+  // |n| = 1/|n0| along n0. The bound keeps the LP bounded (a gap grows without end along normals
+  // that tilt away from n0); the wider one admits separating normals up to ~89.9 degrees from n0
+  // (two long shells side by side, whose centres differ mostly along their length).
+  for (const double tilt : {4.0, 4096.0})
+    if (auto plane = separating_plane_within(below, above, n0, tilt / n0.norm())) return plane;
+  return std::nullopt;
+}
+
+static std::optional<Epeck::Plane_3> separating_plane_within(const std::vector<Point3>& below,
+                                                              const std::vector<Point3>& above,
+                                                              const Eigen::Vector3d& n0, double bound) {
   // Variables n (0..2), d_below (3), d_above (4): n·x - d_below <= 0 below, d_above - n·x <= 0
-  // above, n·n0 = 1, minimise d_below - d_above.
+  // above, n·n0 = 1, |n_j| <= bound, minimise d_below - d_above.
   Program p(CGAL::SMALLER, false, 0, false, 0);
-  const double bound = 4.0 / n0.norm();  // |n| = 1/|n0| along n0; room to tilt, but bounded
   for (int j = 0; j < 3; ++j) {
     p.set_l(j, true, -bound);
     p.set_u(j, true, bound);

@@ -35,8 +35,9 @@ std::optional<Eigen::Vector3d> solve_lp3_exact(const Eigen::Vector3d& c, const s
 std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, const std::vector<Row>& rows);
 
 /// An exact plane with every point of `below` on or below it and every point of `above` on or
-/// above it, if there is one: the LP "maximise the gap" over normals n with n·n0 = 1 (|n| bounded),
-/// solved exactly (Gmpzf); the plane lies half-way across the gap. nullopt when the sets overlap.
+/// above it, if there is one: the LP "maximise the gap" over normals n with n·n0 = 1 (|n| bounded,
+/// first to 4/|n0|, then to 4096/|n0| for normals nearly perpendicular to n0), solved exactly
+/// (Gmpzf); the plane lies half-way across the gap. nullopt when the sets overlap.
 std::optional<Epeck::Plane_3> separating_plane_exact(const std::vector<Point3>& below, const std::vector<Point3>& above,
                                                      const Eigen::Vector3d& n0);
 
