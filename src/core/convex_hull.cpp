@@ -165,10 +165,11 @@ std::vector<Point3> prune_near_redundant_points(std::vector<Point3> points, doub
   // gets a quarter of delta, so the pruned hull is within delta of the hull of the points.
   constexpr int kRounds = 4;
   const double d2 = (delta / kRounds) * (delta / kRounds);
-  for (int round = 0; round < kRounds && delta > 0; ++round) {
+  for (int round = 0; round < kRounds; ++round) {
     const Mesh hull = convex_hull_mesh(points);
-    if (round == 0) points = mesh_points(hull);  // only the hull's vertices, whatever happens next
-    if (hull.number_of_vertices() <= 4) break;
+    if (hull.is_empty()) break;  // flat: no hull to prune
+    points = mesh_points(hull);
+    if (!(delta > 0) || hull.number_of_vertices() <= 4) break;
     std::vector<char> drop(hull.number_of_vertices(), 0), locked(hull.number_of_vertices(), 0);
     std::vector<Point3> link;
     bool any = false;
