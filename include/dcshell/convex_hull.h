@@ -17,14 +17,14 @@ Mesh convex_hull_mesh(const std::vector<Point3>& points);
 /// True when the points span 3D (at least 4 points, not all coplanar), decided exactly.
 bool spans_3d(const std::vector<Point3>& points);
 
-/// The vertices of the convex hull of `points`, less those within `delta` of the hull of the
-/// others: a vertex a few ulps off the line of an edge (its faces are slivers along the edge, whose
-/// folds have no usable direction and whose normals are rounding noise) or barely above the plane
-/// of its neighbours. Points in `keep` (sorted) stay. The hull of the result lies inside the
-/// hull of `points` and within `delta` of it, so whatever held inside the one holds for the
-/// other. `pruned` (if given) is increased by the number left out.
-std::vector<Point3> prune_near_redundant_points(std::vector<Point3> points, double delta,
-                                               const std::vector<Point3>& keep = {}, std::size_t* pruned = nullptr);
+/// convex_hull_mesh(points) less its vertices within `delta` of the hull of the others: a vertex a
+/// few ulps off the line of an edge (its faces are slivers along the edge, whose folds have no
+/// usable direction and whose normals are rounding noise) or barely above the plane of its
+/// neighbours. Points in `keep` (sorted) stay. The result lies inside the hull of `points` and
+/// within `delta` of it, so whatever held inside the one holds for the other; its vertices are
+/// input points. `pruned` (if given) is increased by the number left out.
+Mesh pruned_convex_hull_mesh(const std::vector<Point3>& points, double delta, const std::vector<Point3>& keep = {},
+                             std::size_t* pruned = nullptr);
 
 /// Points of a mesh, in vertex order.
 std::vector<Point3> mesh_points(const Mesh& mesh);

@@ -14,7 +14,7 @@ struct TrimStats {
   std::size_t dropped_vertices = 0;  ///< vertices that could not be restored (sliver) and were left out
   std::size_t merged_vertices = 0;   ///< vertices left out as closer than kMergeDistance to a kept one
   /// Vertices the cuts made within kMergeDistance of the hull of the others, left out
-  /// (prune_near_redundant_points); build_shells adds the part's hull vertices it left out so.
+  /// (pruned_convex_hull_mesh); build_shells adds the part's hull vertices it left out so.
   std::size_t flat_vertices = 0;
 };
 

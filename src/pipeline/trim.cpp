@@ -120,7 +120,7 @@ Mesh trim_shell(const ExactPolytope& hull, const std::vector<CutPlane>& keep_bel
   // The cut's own vertices within that distance of the hull of the others go too (the hull's are
   // where the part or the remesher put them: its 1e-9 domes and lifted splits are near-flat on
   // purpose): a cut ending a few ulps off the line of a hull edge leaves slivers along it.
-  return convex_hull_mesh(prune_near_redundant_points(std::move(kept), kMergeDistance * diag, hull_points, &st.flat_vertices));
+  return pruned_convex_hull_mesh(kept, kMergeDistance * diag, hull_points, &st.flat_vertices);
 }
 
 }  // namespace dcshell

@@ -69,15 +69,15 @@ BOOST_AUTO_TEST_CASE(pruning_leaves_out_vertices_within_rounding_of_the_others_h
   pts.push_back({0.5, 0.5, 0.5});  // interior: never a hull vertex
   BOOST_TEST_REQUIRE(convex_hull_mesh(pts).number_of_vertices() == 12u);
   std::size_t pruned = 0;
-  std::vector<Point3> out = prune_near_redundant_points(pts, 1e-7, {}, &pruned);
+  Mesh out = pruned_convex_hull_mesh(pts, 1e-7, {}, &pruned);
   BOOST_TEST(pruned == 3u);
-  BOOST_TEST(out.size() == 9u);
-  for (const Point3& q : out) BOOST_TEST((std::find(pts.begin(), pts.end(), q) != pts.end()));
-  BOOST_TEST(std::abs(CGAL::to_double(six_signed_volume(convex_hull_mesh(out))) / 6 - (1 + 1e-3 / 3)) < 1e-9);
+  BOOST_TEST(out.number_of_vertices() == 9u);
+  for (auto v : out.vertices()) BOOST_TEST((std::find(pts.begin(), pts.end(), out.point(v)) != pts.end()));
+  BOOST_TEST(std::abs(CGAL::to_double(six_signed_volume(out)) / 6 - (1 + 1e-3 / 3)) < 1e-9);
   std::vector<Point3> keep = {pts[8]};
-  BOOST_TEST(prune_near_redundant_points(pts, 1e-7, keep).size() == 10u);
+  BOOST_TEST(pruned_convex_hull_mesh(pts, 1e-7, keep).number_of_vertices() == 10u);
   // Far below the distance: nothing goes.
-  BOOST_TEST(prune_near_redundant_points(pts, 1e-13).size() == 12u);
+  BOOST_TEST(pruned_convex_hull_mesh(pts, 1e-13).number_of_vertices() == 12u);
 }
 
 BOOST_AUTO_TEST_CASE(touching_boxes_do_not_overlap) {
