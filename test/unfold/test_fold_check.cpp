@@ -39,23 +39,32 @@ const double deg = M_PI / 180;
 // A unit square base (2 triangles, joined by a flat fold) with a triangular flap hinged on its
 // left side (apex a) and one on its right side (apex b), folded by angle_a and angle_b (negative
 // = up, towards +z: the outside of the shell faces +z and convex folds turn faces down).
-Net flap_net(double angle_a, double angle_b, Eigen::Vector2d a, Eigen::Vector2d b) {
+// A net drawn where its shell vertices lie (z = 0): faces, cut tree and folds {v0, v1, f0, f1}
+// with their angles.
+Net planar_net(std::vector<Eigen::Vector3d> v, std::vector<std::array<int, 3>> faces, std::vector<int> parent,
+               const std::vector<std::array<int, 4>>& folds, const std::vector<double>& angles) {
   Net n;
-  n.shell_vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {a.x(), a.y(), 0}, {b.x(), b.y(), 0}};
-  n.shell_faces = {{0, 1, 2}, {0, 2, 3}, {3, 4, 0}, {1, 5, 2}};
+  n.shell_vertices = std::move(v);
+  n.shell_faces = std::move(faces);
   for (auto& t : n.shell_faces) {
     std::array<Eigen::Vector2d, 3> c;
     for (int k = 0; k < 3; ++k) c[k] = n.shell_vertices[t[k]].head<2>();
     n.corners.push_back(c);
   }
-  n.parent = {-1, 0, 1, 0};
-  auto edge = [](int v0, int v1, int f0, int f1, double angle) {
+  n.parent = std::move(parent);
+  for (std::size_t i = 0; i < folds.size(); ++i) {
     Net::Edge e;
-    e.v0 = v0, e.v1 = v1, e.f0 = f0, e.f1 = f1, e.fold = true, e.fold_angle = angle;
-    return e;
-  };
-  n.edges = {edge(0, 2, 0, 1, 0.0), edge(3, 0, 1, 2, angle_a), edge(1, 2, 0, 3, angle_b)};
+    e.v0 = folds[i][0], e.v1 = folds[i][1], e.f0 = folds[i][2], e.f1 = folds[i][3], e.fold = true;
+    e.fold_angle = angles[i];
+    n.edges.push_back(e);
+  }
   return n;
+}
+
+Net flap_net(double angle_a, double angle_b, Eigen::Vector2d a, Eigen::Vector2d b) {
+  return planar_net({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {a.x(), a.y(), 0}, {b.x(), b.y(), 0}},
+                    {{0, 1, 2}, {0, 2, 3}, {3, 4, 0}, {1, 5, 2}}, {-1, 0, 1, 0}, {{0, 2, 0, 1}, {3, 0, 1, 2}, {1, 2, 0, 3}},
+                    {0.0, angle_a, angle_b});
 }
 
 // Independent reference: do the two flaps (faces 2 and 3, which share no vertex) intersect at t?
@@ -538,22 +547,9 @@ BOOST_AUTO_TEST_CASE(fold_check_proves_pieces_hinged_through_a_sliver) {
   // off the line, as trimming used to write, does this). The near-common-line bound proves them;
   // a relative turn past a half turn still collides.
   auto sliver_net = [](double w, double a1, double a2) {
-    Net n;
-    n.shell_vertices = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, -w, 0}, {0.25, -1, 0}};
-    n.shell_faces = {{0, 1, 2}, {0, 2, 3}, {0, 4, 1}, {0, 5, 4}};
-    for (auto& t : n.shell_faces) {
-      std::array<Eigen::Vector2d, 3> c;
-      for (int k = 0; k < 3; ++k) c[k] = n.shell_vertices[t[k]].head<2>();
-      n.corners.push_back(c);
-    }
-    n.parent = {-1, 0, 0, 2};
-    auto edge = [](int v0, int v1, int f0, int f1, double a) {
-      Net::Edge e;
-      e.v0 = v0, e.v1 = v1, e.f0 = f0, e.f1 = f1, e.fold = true, e.fold_angle = a;
-      return e;
-    };
-    n.edges = {edge(0, 2, 0, 1, 0.0), edge(0, 1, 0, 2, a1), edge(0, 4, 2, 3, a2)};
-    return n;
+    return planar_net({{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0.5, -w, 0}, {0.25, -1, 0}},
+                      {{0, 1, 2}, {0, 2, 3}, {0, 4, 1}, {0, 5, 4}}, {-1, 0, 0, 2}, {{0, 2, 0, 1}, {0, 1, 0, 2}, {0, 4, 2, 3}},
+                      {0.0, a1, a2});
   };
   for (double w : {1e-10, 1e-11, 1e-3}) {
     Net net = sliver_net(w, 0.5, 0.4);
