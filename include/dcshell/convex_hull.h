@@ -26,6 +26,9 @@ bool spans_3d(const std::vector<Point3>& points);
 Mesh pruned_convex_hull_mesh(const std::vector<Point3>& points, double delta, const std::vector<Point3>& keep = {},
                              std::size_t* pruned = nullptr);
 
+/// Length of the diagonal of the points' bounding box (0 for none): the size tolerances scale with.
+double bbox_diagonal(const std::vector<Point3>& points);
+
 /// Points of a mesh, in vertex order.
 std::vector<Point3> mesh_points(const Mesh& mesh);
 

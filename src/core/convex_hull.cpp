@@ -221,6 +221,12 @@ Mesh pruned_convex_hull_mesh(const std::vector<Point3>& points, double delta, co
   return hull;
 }
 
+double bbox_diagonal(const std::vector<Point3>& points) {
+  if (points.empty()) return 0;
+  const CGAL::Bbox_3 b = CGAL::bbox_3(points.begin(), points.end());
+  return std::sqrt(CGAL::square(b.xmax() - b.xmin()) + CGAL::square(b.ymax() - b.ymin()) + CGAL::square(b.zmax() - b.zmin()));
+}
+
 std::vector<Point3> mesh_points(const Mesh& mesh) {
   std::vector<Point3> pts;
   pts.reserve(mesh.number_of_vertices());

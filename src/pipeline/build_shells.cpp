@@ -97,10 +97,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   for (std::size_t i = 0; i < n; ++i) {
     progress("hulls", i, n);
     original[i] = exact_hull(parts[i].points, int(i));
-    const CGAL::Bbox_3 box = CGAL::bbox_3(parts[i].points.begin(), parts[i].points.end());
-    const double diag = std::sqrt(CGAL::square(box.xmax() - box.xmin()) + CGAL::square(box.ymax() - box.ymin()) +
-                                  CGAL::square(box.zmax() - box.zmin()));
-    hull_mesh[i] = pruned_convex_hull_mesh(parts[i].points, kMergeDistance * diag, {}, &pruned[i]);
+    hull_mesh[i] = pruned_convex_hull_mesh(parts[i].points, kMergeDistance * bbox_diagonal(parts[i].points), {}, &pruned[i]);
   }
   if (opt.simplify_iterations > 0) {
     // Steiner points in a hull's facets would mostly be cut away, and they spend the faces the
@@ -116,9 +113,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
     });
   }
   for (std::size_t i = 0; i < n; ++i)
-    hull[i] = opt.simplify_iterations > 0 ? exact_hull(mesh_points(hull_mesh[i]), int(i))
-              : pruned[i] > 0            ? exact_hull(mesh_points(hull_mesh[i]), int(i))
-                                         : original[i];
+    hull[i] = opt.simplify_iterations > 0 || pruned[i] > 0 ? exact_hull(mesh_points(hull_mesh[i]), int(i)) : original[i];
   clock.lap("hulls");
 
   // --- overlaps and nesting

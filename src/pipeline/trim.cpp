@@ -108,10 +108,7 @@ Mesh trim_shell(const ExactPolytope& hull, const std::vector<CutPlane>& keep_bel
       ++st.dropped_vertices;
   }
   if (kept.size() < 4) return convex_hull_mesh(kept);
-  double lo[3] = {kept[0].x(), kept[0].y(), kept[0].z()}, hi[3] = {lo[0], lo[1], lo[2]};
-  for (const auto& q : kept)
-    for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], q[d]), hi[d] = std::max(hi[d], q[d]);
-  const double diag = std::sqrt((hi[0] - lo[0]) * (hi[0] - lo[0]) + (hi[1] - lo[1]) * (hi[1] - lo[1]) + (hi[2] - lo[2]) * (hi[2] - lo[2]));
+  const double diag = bbox_diagonal(kept);
   kept = merge_close_points(kept, kMergeDistance * diag, &st.merged_vertices);
   std::vector<Point3> hull_points;
   for (const auto& v : hull.vertices)
