@@ -193,7 +193,7 @@ int main(int argc, char** argv) {
   const char* env = std::getenv("DCSHELL_SHARED_DATA");
   std::string data = env ? env : "../shared/data", svg_dir, only;
   int iterations = 100, repeat = 3;
-  bool hulls_on = true, shells = true, splits = true;
+  bool hulls_on = true, shells = true, splits = true, flips = true;
   double face_factor = 1;
   std::vector<double> ratios{0.01, 0.1, 1.0, 10.0};
   po::options_description opts("usage: bench_remesh [options]\n\noptions");
@@ -204,6 +204,7 @@ int main(int argc, char** argv) {
       "hulls", po::value(&hulls_on)->default_value(true), "hull table and plots")(
       "shells", po::value(&shells)->default_value(true), "shell table (runs the pipeline)")(
       "edge-splits", po::value(&splits)->default_value(true), "lifted edge splits (RemeshOptions::edge_splits)")(
+      "edge-flips", po::value(&flips)->default_value(true), "lifted edge flips (RemeshOptions::edge_flips)")(
       "face-factor", po::value(&face_factor)->default_value(1.0),
       "post-only: each shell may have this many times its plain faces (what more faces would buy)")(
       "breakdown", "per model: where the paper pipeline's area and fatness are (stderr)");
@@ -252,6 +253,7 @@ int main(int argc, char** argv) {
         RemeshStats st;
         RemeshOptions o;
         o.edge_splits = splits;
+        o.edge_flips = flips;
         f.add(remesh_convex_shell(h, std::vector<CutPlane>{}, o, &st));
         fa += st.faces_after;
         a += st.volume_before;
@@ -270,6 +272,7 @@ int main(int argc, char** argv) {
         o.iterations = iterations;
         o.max_volume_increase = ratio;
         o.edge_splits = splits;
+        o.edge_flips = flips;
         o.on_iteration = [&](int k, const Mesh& m) { per[k - 1].add(m); };
         remesh_convex_shell(h, std::vector<CutPlane>{}, o);
       }
@@ -295,6 +298,7 @@ int main(int argc, char** argv) {
     const auto parts = load_parts({dir.string()}, warnings);
     ShellOptions so;
     so.edge_splits = splits;
+    so.edge_flips = flips;
     const ShellResult plain = build_shells(parts, so);
     so.simplify_iterations = 10;
     so.max_volume_increase = 0.05;
@@ -335,6 +339,7 @@ int main(int argc, char** argv) {
       parallel_for(meshes.size(), [&](std::size_t k) {
         RemeshOptions o;
         o.edge_splits = splits;
+        o.edge_flips = flips;
         o.max_faces = std::size_t(face_factor * double(meshes[k].number_of_faces()));
         post[k] = remesh_convex_shell(meshes[k], cons[k], o);
       });

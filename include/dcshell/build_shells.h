@@ -31,6 +31,8 @@ struct ShellOptions {
   bool fatten_flat_facets = true;
   /// ... and splits edges with lifted points where that makes the shells fatter (remesh.h).
   bool edge_splits = true;
+  /// ... and flips edges by lifting a vertex where that makes them fatter (remesh.h).
+  bool edge_flips = true;
   /// Called with (stage, done, total) as work proceeds.
   StageProgress progress;
 };

@@ -35,6 +35,10 @@ struct FlatFacetOptions {
   /// Faces the result may have beyond the input's: each Steiner point (a point inside a facet,
   /// on its dome) costs two. They go where they gain the most area x fatness.
   std::size_t extra_faces = 0;
+  /// Points the result must still enclose besides the mesh's own vertices that do not sink
+  /// (exactly): a remeshed shell's input points away from its constraint planes, which may lie
+  /// on a face next to a sinking facet and would be cut off by its tilt.
+  std::vector<Point3> enclose;
 };
 
 struct FlatFacetStats {

@@ -32,6 +32,10 @@ struct RemeshOptions {
   /// that raises area x fatness: the big hull slivers between few extreme points, which
   /// collapses cannot fix.
   bool edge_splits = true;
+  /// Each iteration may also flip edges ab -> cd by lifting c just above the plane of the face
+  /// across (no faces added, a little volume), where that raises area x fatness: the long thin
+  /// triangles a stretched hull's vertices force, which neither collapses nor moves change.
+  bool edge_flips = true;
   /// Called after each iteration with the working mesh (convex; for benchmarks and progress).
   std::function<void(int iteration, const Mesh& mesh)> on_iteration;
 };
@@ -40,7 +44,7 @@ struct RemeshStats {
   std::size_t faces_before = 0, faces_after = 0;
   double fatness_before = 0, fatness_after = 0;  ///< weighted_fatness
   double volume_before = 0, volume_after = 0;
-  std::size_t collapses = 0, moves = 0, splits = 0;
+  std::size_t collapses = 0, moves = 0, splits = 0, flips = 0;
   FlatFacetStats flat;  ///< the final flat-facet step
   double volume_increase() const { return volume_before > 0 ? volume_after / volume_before - 1.0 : 0.0; }
 };

@@ -58,6 +58,7 @@ int run_remesh(int argc, char** argv) {
         "target-faces", po::value(&target_faces)->default_value(0), "do not simplify below this many faces (0: no bound)")(
         "no-domes", "keep flat facets on neighbour planes exactly where they were (no fattest re-triangulation by 1e-9 domes)")(
         "no-splits", "no lifted edge splits (they spend the faces collapses saved on the worst slivers)")(
+        "no-flips", "no lifted edge flips (a vertex raised just enough to turn a long thin pair of faces)")(
         "no-timings", "leave times out of report.json (byte-identical reruns)")(
         "force,f", "replace an existing non-empty output directory")(
         "quiet,q", "no summary on stderr (a failure is still explained there: nothing is written then)");
@@ -71,6 +72,7 @@ int run_remesh(int argc, char** argv) {
     ro.target_faces = static_cast<std::size_t>(target_faces);
     ro.fatten_flat_facets = vm.count("no-domes") == 0;
     ro.edge_splits = vm.count("no-splits") == 0;
+    ro.edge_flips = vm.count("no-flips") == 0;
     if (!(ro.max_volume_increase >= 0) || !std::isfinite(ro.max_volume_increase))
       throw InputError("--max-volume-increase must be a finite number >= 0");
     AtomicDirectory dir(out, vm.count("force") > 0, inputs);  // refuses a bad target before any work
@@ -135,7 +137,7 @@ int run_remesh(int argc, char** argv) {
         json.field("fatness_before", s.fatness_before).field("fatness_after", s.fatness_after);
         json.field("volume_before", s.volume_before).field("volume_after", s.volume_after);
         json.field("volume_increase", s.volume_increase());
-        json.field("collapses", s.collapses).field("moves", s.moves).field("splits", s.splits);
+        json.field("collapses", s.collapses).field("moves", s.moves).field("splits", s.splits).field("flips", s.flips);
         json.field("domed_facets", s.flat.outward + s.flat.inward).field("max_sink", s.flat.max_inward);
         json.field("neighbour_planes", constraints[i].cut_planes.size() + constraints[i].face_planes.size() +
                                                    constraints[i].exact_planes.size());

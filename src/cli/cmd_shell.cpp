@@ -172,6 +172,7 @@ int run_shell(int argc, char** argv) {
         "volume increase allowed to remeshing (paper: 0.05), split between hulls and shells")(
         "no-domes", "remeshing keeps cut faces exactly where they were (no fattest re-triangulation by 1e-9 domes)")(
         "no-splits", "remeshing splits no edges (no lifted points on the worst slivers' long edges)")(
+        "no-flips", "remeshing flips no edges (no vertex raised to turn a long thin pair of faces)")(
         "force,f", "replace a non-empty output directory")("quiet,q", "no progress or warnings on stderr")(
         "no-timings", "leave per-stage times out of report.json (byte-identical reruns)");
     po::variables_map vm;
@@ -180,6 +181,7 @@ int run_shell(int argc, char** argv) {
     if (inputs.empty()) throw InputError("no input (see 'dcshell shell --help')");
     opt.fatten_flat_facets = vm.count("no-domes") == 0;
     opt.edge_splits = vm.count("no-splits") == 0;
+    opt.edge_flips = vm.count("no-flips") == 0;
     opt.cut.method = parse_cut_method(method);
     opt.cut.seed = seed;
     // `!(x >= 0)` also refuses NaN; infinities are refused explicitly (they would reach the

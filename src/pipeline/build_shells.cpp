@@ -86,6 +86,7 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   remesh_opt.iterations = opt.simplify_iterations;
   remesh_opt.fatten_flat_facets = opt.fatten_flat_facets;
   remesh_opt.edge_splits = opt.edge_splits;
+  remesh_opt.edge_flips = opt.edge_flips;
   // Hulls are remeshed before cutting and shells after: each stage may grow its input by
   // sqrt(1 + R) - 1, so the two together stay near R (the paper's 5% is one bound).
   remesh_opt.max_volume_increase = std::sqrt(1.0 + opt.max_volume_increase) - 1.0;

@@ -436,6 +436,7 @@ bool realise(const Mesh& mesh, const ShellConstraints& constraints, const FlatFa
       if (!constraints.satisfied_by(pts[v.idx()])) return false;
     }
   }
+  if (!options.enclose.empty() && !remesh_detail::mesh_encloses(out, options.enclose)) return false;
   if (options.max_volume > 0 && remesh_detail::mesh_volume(out) > options.max_volume) return false;
   if (out.number_of_faces() > mesh.number_of_faces() + 2 * steiner_points) return false;
   const double fat = weighted_fatness(out);

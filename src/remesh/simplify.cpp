@@ -69,7 +69,8 @@ Candidate best_position(const Mesh& m, const Star& s, const ShellConstraints& co
     if (is_flat_target(m, s, r) && (!fatter_only || local_fatness_cone(m, s, m.point(r)) >= local_fatness_star(m, s)))
       return make_candidate(m, s, m.point(r), 0.0);
 
-  const Eigen::Vector3d pu = vec(m.point(s.removed[0])), pv = vec(m.point(s.removed[1]));
+  // Centred on the removed vertices: an edge's mid-point, or the one vertex a flip lifts.
+  const Eigen::Vector3d pu = vec(m.point(s.removed.front())), pv = vec(m.point(s.removed.back()));
   Frame frame{0.5 * (pu + pv), 0.0};
   for (V r : s.ring) frame.scale = std::max(frame.scale, (vec(m.point(r)) - frame.origin).norm());
   if (!(frame.scale > 0)) return best;
@@ -203,6 +204,10 @@ struct Entry {
 }  // namespace
 
 namespace remesh_detail {
+
+Candidate cheapest_cone(const Mesh& m, const Star& s, const ShellConstraints& c, bool fatter_only) {
+  return best_position(m, s, c, fatter_only);
+}
 
 Workspace::Workspace(Mesh& m) : mesh(m), volume(mesh_volume(m)) {
   stamp_ = mesh.add_property_map<V, unsigned>("v:remesh_stamp", 0).first;

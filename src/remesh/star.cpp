@@ -79,6 +79,22 @@ Star edge_star(const Mesh& m, H h) {
   return s;
 }
 
+Star flip_star(const Mesh& m, H h) {
+  // Face abc holds h = a->b, face bad is across; the ring of c runs ..., a, b, ...: d goes between.
+  const V a = m.source(h), b = m.target(h), c = m.target(m.next(h));
+  const V d = m.target(m.next(m.opposite(h)));
+  Star s = vertex_star(m, c);
+  if (!s.valid) return s;
+  const std::size_t n = s.ring.size();
+  std::size_t i = 0;
+  while (i < n && !(s.ring[i] == a && s.ring[(i + 1) % n] == b)) ++i;
+  if (i == n) { s.valid = false; return s; }
+  s.ring.insert(s.ring.begin() + std::ptrdiff_t(i + 1), d);
+  s.faces.push_back(m.face(m.opposite(h)));
+  finish(m, s);  // d already next to c (a degree-3 end point) fails the link condition here
+  return s;
+}
+
 void add_constraint_rows(const ShellConstraints& c, const Frame& f, double margin, std::vector<Row>& rows) {
   for (const CutPlane& p : c.cut_planes) {
     const double len = p.normal.norm();

@@ -34,6 +34,11 @@ Star vertex_star(const Mesh& mesh, V v);
 /// Star of the edge of halfedge h (both end points replaced by one vertex).
 Star edge_star(const Mesh& mesh, H h);
 
+/// Star of the vertex c of face abc (h = a->b) grown by the face bad across h: the cone from a
+/// new point over its ring (d inserted between a and b) is the edge flip ab -> cd with c moved,
+/// which on a convex mesh needs c lifted above the plane of bad.
+Star flip_star(const Mesh& mesh, H h);
+
 /// Local frame of a replacement: y = (x - origin) / scale keeps the LP/QP coefficients O(1).
 struct Frame {
   Eigen::Vector3d origin;

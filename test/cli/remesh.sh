@@ -62,6 +62,11 @@ awk -F'[:,]' '/"max_sink"/ {if ($2 != 0) bad=1} /"domed_facets"/ {if ($2 != 0) b
 "$bin" remesh --no-splits --out "$tmp/ns" "$tmp/left.obj" "$tmp/right.obj" 2> /dev/null || fail "--no-splits"
 awk -F'[:,]' '/"splits"/ {n++; if ($2 != 0) bad=1} END {if (n != 2) bad=1; exit bad}' "$tmp/ns/report.json" ||
   fail "--no-splits still split"
+# Without flips none is made either (the default run above made some: the check can fail).
+awk -F'[:,]' '/"flips"/ {n += $2} END {exit !(n > 0)}' "$tmp/out/report.json" || fail "no flips by default"
+"$bin" remesh --no-flips --out "$tmp/nf" "$tmp/left.obj" "$tmp/right.obj" 2> /dev/null || fail "--no-flips"
+awk -F'[:,]' '/"flips"/ {n++; if ($2 != 0) bad=1} END {if (n != 2) bad=1; exit bad}' "$tmp/nf/report.json" ||
+  fail "--no-flips still flipped"
 
 # Refuses an existing output, bad options and bad input: exit 2, nothing written.
 "$bin" remesh --out "$tmp/out" "$tmp/left.obj" 2> /dev/null; [ $? -eq 2 ] || fail "existing output dir"
