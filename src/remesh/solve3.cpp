@@ -4,6 +4,7 @@
 // the certificate cannot settle (unbounded, degenerate, ill-conditioned).
 #include <Eigen/Geometry>
 
+#include <array>
 #include <atomic>
 #include <cmath>
 #include <limits>
@@ -94,23 +95,31 @@ std::pair<std::size_t, double> most_violated(const std::vector<Row>& rows, const
 
 // Both programs are solved by constraint generation: optimise over a working set W of rows, add
 // the row the optimum violates most, repeat. When the optimum of W violates row p, the optimum of
-// W + p lies on p's plane, so only active sets holding p are searched first (Seidel's argument);
-// W stays small (the rows that ever bind), so each step costs |W|^2 candidate checks.
+// W + p lies on p's plane, so only active sets holding p are searched first (Seidel's argument).
+// The QP keeps every row that ever bound (each step costs |W|^2 candidate checks). The LP keeps
+// only the three rows of its last certificate: their vertex is optimal for them alone (KKT), and
+// three independent normals keep W pointed, so the vertex arguments below still hold; the
+// objective never decreases, so dropping rows only costs steps (bounded: past the cap the exact
+// solver decides), and a step costs a constant instead of |W|^3.
 template <class Certify>
 std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vector<Row> w, Eigen::Vector3d y,
                                         bool with_singles_and_pairs, const Eigen::Vector3d& t, Certify certified,
                                         bool& undecided) {
   undecided = false;
-  for (std::size_t iter = 0; iter <= rows.size(); ++iter) {
+  const bool prune = !with_singles_and_pairs;
+  std::vector<Row> seen = w;  // every row W ever held (the Farkas test below)
+  const std::size_t max_iter = prune ? 4 * rows.size() + 16 : rows.size();
+  for (std::size_t iter = 0; iter <= max_iter; ++iter) {
     const auto [p, viol] = most_violated(rows, y);
     if (p == rows.size()) return y;
     // Farkas with a box: rows i and p with nearly opposite normals leave no point within
     // |y| <= kBox when b_i + b_p + kBox |a_i + a_p|_1 < 0 (their sum is <= that bound there).
     // Catches the thin slabs of nearly flat neighbourhoods, whose vertices are too
     // ill-conditioned to enumerate; a solution beyond kBox would be useless to the caller.
-    for (const Row& r : w)
+    for (const Row& r : seen)
       if (r.b + rows[p].b + kBox * (r.a + rows[p].a).lpNorm<1>() < -kFeasTol) return std::nullopt;
     w.push_back(rows[p]);
+    seen.push_back(rows[p]);
     const std::size_t m = w.size(), q = m - 1;
     bool found = false;
     if (with_singles_and_pairs) {  // QP: projections onto p's plane and onto its lines with others
@@ -134,6 +143,7 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
     // Also decides infeasibility: were W + p feasible, the part of p's plane inside W (bounded by
     // the box) would be a non-empty polygon, one of whose vertices is such a triple.
     bool any_feasible = false, skipped = false;
+    std::array<std::size_t, 3> active{m, m, m};  // the certificate's rows (a vertex's)
     for (std::size_t i = 0; i < q && !found; ++i)
       for (std::size_t j = i + 1; j < q && !found; ++j) {
         const Vertex v = vertex(w[i], w[j], w[q]);
@@ -143,7 +153,7 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
         }
         if (!feasible(w, v.y)) continue;
         any_feasible = true;
-        if (certified(v)) y = v.y, found = true;
+        if (certified(v)) y = v.y, found = true, active = {i, j, q};
       }
     if (!found && !any_feasible && !skipped) return std::nullopt;
     // Degenerate optimum certified without p: any active set of W + p.
@@ -151,12 +161,13 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
       for (std::size_t j = i + 1; j < m && !found; ++j)
         for (std::size_t k = j + 1; k < m && !found; ++k) {
           const Vertex v = vertex(w[i], w[j], w[k]);
-          if (v.ok && certified(v) && feasible(w, v.y)) y = v.y, found = true;
+          if (v.ok && certified(v) && feasible(w, v.y)) y = v.y, found = true, active = {i, j, k};
         }
     if (!found) {
       if (!certainly_infeasible(w)) undecided = true;
       return std::nullopt;
     }
+    if (prune && active[0] < m) w = {w[active[0]], w[active[1]], w[active[2]]};
   }
   undecided = true;
   return std::nullopt;

@@ -123,17 +123,62 @@ void add_below_row(const Point3& p, const Point3& q, const Point3& r, const Fram
   rows.push_back({u, u.dot(a - f.origin) / f.scale - margin});
 }
 
+namespace {
+
+// Sign of orientation(w, a, b, x) for many x against one plane: the normal is computed once and a
+// static error bound covers the whole batch (the analysis of CGAL's own static filter, with the
+// batch's largest coordinate differences from w, at about twice its constant); what the bound
+// cannot settle goes to the exact predicate, so every answer equals CGAL::orientation's.
+class PlaneBatch {
+ public:
+  // `reach[k]`: an upper bound of |x[k] - w[k]| over every x to be tested, a and b included.
+  PlaneBatch(const Point3& w, const Point3& a, const Point3& b, const Eigen::Vector3d& reach)
+      : w_(w), a_(a), b_(b), wv_(vec(w)), n_((vec(a) - wv_).cross(vec(b) - wv_)) {
+    // Within these bounds nothing overflows and underflow errors are far below eps.
+    filtered_ = reach.minCoeff() >= 1e-90 && reach.maxCoeff() <= 1e90;
+    eps_ = 1e-14 * reach[0] * reach[1] * reach[2];
+  }
+  CGAL::Orientation operator()(const Point3& x) const {
+    if (filtered_) {
+      const double v = n_.dot(vec(x) - wv_);
+      if (v > eps_) return CGAL::POSITIVE;
+      if (v < -eps_) return CGAL::NEGATIVE;
+    }
+    return CGAL::orientation(w_, a_, b_, x);
+  }
+
+ private:
+  const Point3 &w_, &a_, &b_;
+  Eigen::Vector3d wv_, n_;
+  bool filtered_ = false;
+  double eps_ = 0;
+};
+
+}  // namespace
+
 bool replacement_is_valid(const Mesh& m, const Star& s, const Point3& w, const std::vector<Point3>& enclose,
                           const ShellConstraints& constraints) {
   if (!s.valid || !constraints.satisfied_by(w)) return false;
   const std::size_t n = s.ring.size();
   auto ringp = [&](std::size_t i) -> const Point3& { return m.point(s.ring[i % n]); };
-  // Cone faces: non-degenerate, every remaining vertex and the removed ones on or below.
+  // Largest |x - w| per coordinate over the mesh and the points to enclose, rounded exactly as
+  // the batches round them: the bound of their filter.
+  const Eigen::Vector3d wv = vec(w);
+  Eigen::Vector3d reach = Eigen::Vector3d::Zero();
+  auto widen = [&](const Point3& p) { reach = reach.cwiseMax((vec(p) - wv).cwiseAbs()); };
+  for (V x : m.vertices()) widen(m.point(x));
+  for (const Point3& o : enclose) widen(o);
+  // Cone faces: non-degenerate, every remaining vertex and the removed ones on or below (the
+  // face's own corners lie on it).
+  std::vector<PlaneBatch> cone;
+  cone.reserve(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Point3 &a = ringp(i), &b = ringp(i + 1);
     if (CGAL::collinear(w, a, b)) return false;
+    cone.emplace_back(w, a, b, reach);
+    const V va = s.ring[i], vb = s.ring[(i + 1) % n];
     for (V x : m.vertices())
-      if (CGAL::orientation(w, a, b, m.point(x)) == CGAL::POSITIVE) return false;
+      if (x != va && x != vb && cone.back()(m.point(x)) == CGAL::POSITIVE) return false;
   }
   // w on or below every face that stays.
   for (F f : m.faces()) {
@@ -157,8 +202,8 @@ bool replacement_is_valid(const Mesh& m, const Star& s, const Point3& w, const s
       bool in = true;
       for (int k = 0; k < 3; ++k) in = in && o[k] >= lo[k] && o[k] <= hi[k];
       if (!in) continue;
-      for (std::size_t i = 0; i < n; ++i)
-        if (CGAL::orientation(w, ringp(i), ringp(i + 1), o) == CGAL::POSITIVE) return false;
+      for (const PlaneBatch& plane : cone)
+        if (plane(o) == CGAL::POSITIVE) return false;
     }
   }
   return true;

@@ -232,6 +232,36 @@ BOOST_AUTO_TEST_CASE(fast_solver_agrees_with_exact_one) {
   BOOST_CHECK_GT(solved, 200);
 }
 
+BOOST_AUTO_TEST_CASE(fast_lp_on_many_and_degenerate_rows) {
+  // The LP keeps only its last certificate's rows: on programs with hundreds of rows, and with
+  // many rows through the optimum (a mesh vertex's cone), it must still reach the exact optimum
+  // without handing the program over to the exact solver.
+  std::mt19937 rng(5);
+  auto uni = [&] { return (rng() + 0.5) / 4294967296.0 * 2 - 1; };
+  const std::size_t exact0 = remesh_detail::exact_solves();
+  const int trials = 120;
+  for (int trial = 0; trial < trials; ++trial) {
+    std::vector<remesh_detail::Row> rows;
+    const int n = 60 + trial % 200;
+    for (int i = 0; i < n; ++i) rows.push_back({Eigen::Vector3d(uni(), uni(), uni()).normalized(), 1.0});
+    // A point beyond the sphere where many planes meet, and the objective pointing at it.
+    const Eigen::Vector3d p0 = 1.3 * Eigen::Vector3d(uni(), uni(), uni()).normalized();
+    for (int i = 0; i < 3 + trial % 12; ++i) {
+      const Eigen::Vector3d a = (p0.normalized() + 0.6 * Eigen::Vector3d(uni(), uni(), uni())).normalized();
+      rows.push_back({a, a.dot(p0)});
+    }
+    std::shuffle(rows.begin(), rows.end(), rng);
+    const Eigen::Vector3d c = trial % 2 ? Eigen::Vector3d(-p0.normalized())
+                                        : Eigen::Vector3d(uni(), uni(), uni()).normalized();
+    const auto fast = remesh_detail::solve_lp3(c, rows);
+    const auto exact = remesh_detail::solve_lp3_exact(c, rows);
+    BOOST_REQUIRE(fast && exact);
+    for (auto& r : rows) BOOST_CHECK_LE(r.a.dot(*fast) - r.b, 1e-11);
+    BOOST_CHECK_SMALL(c.dot(*fast) - c.dot(*exact), 1e-9);
+  }
+  BOOST_CHECK_LT(remesh_detail::exact_solves() - exact0, std::size_t(trials / 10));
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(remesh)
