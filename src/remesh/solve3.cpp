@@ -143,7 +143,7 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
     // Also decides infeasibility: were W + p feasible, the part of p's plane inside W (bounded by
     // the box) would be a non-empty polygon, one of whose vertices is such a triple.
     bool any_feasible = false, skipped = false;
-    std::array<std::size_t, 3> active{m, m, m};  // the certificate's rows (a vertex's)
+    std::array<std::size_t, 3> active{};  // the certificate's rows (set with `found`)
     for (std::size_t i = 0; i < q && !found; ++i)
       for (std::size_t j = i + 1; j < q && !found; ++j) {
         const Vertex v = vertex(w[i], w[j], w[q]);
@@ -167,7 +167,7 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
       if (!certainly_infeasible(w)) undecided = true;
       return std::nullopt;
     }
-    if (prune && active[0] < m) w = {w[active[0]], w[active[1]], w[active[2]]};
+    if (prune) w = {w[active[0]], w[active[1]], w[active[2]]};
   }
   undecided = true;
   return std::nullopt;

@@ -1,6 +1,7 @@
 // Local replacement bookkeeping and exact checks shared by simplification and regularisation.
 #include "remesh/star.h"
 
+#include <CGAL/Bbox_3.h>
 #include <CGAL/Exact_rational.h>
 
 #include <algorithm>
@@ -127,16 +128,18 @@ namespace {
 
 // Sign of orientation(w, a, b, x) for many x against one plane: the normal is computed once and a
 // static error bound covers the whole batch (the analysis of CGAL's own static filter, with the
-// batch's largest coordinate differences from w, at about twice its constant); what the bound
+// box's sides bounding every coordinate difference, at about twice its constant); what the bound
 // cannot settle goes to the exact predicate, so every answer equals CGAL::orientation's.
 class PlaneBatch {
  public:
-  // `reach[k]`: an upper bound of |x[k] - w[k]| over every x to be tested, a and b included.
-  PlaneBatch(const Point3& w, const Point3& a, const Point3& b, const Eigen::Vector3d& reach)
+  // `box`: holds w, a, b and every x to be tested. Rounding is monotone, so every rounded
+  // difference of two of its points is within the rounded side.
+  PlaneBatch(const Point3& w, const Point3& a, const Point3& b, const CGAL::Bbox_3& box)
       : w_(w), a_(a), b_(b), wv_(vec(w)), n_((vec(a) - wv_).cross(vec(b) - wv_)) {
+    const Eigen::Vector3d side(box.xmax() - box.xmin(), box.ymax() - box.ymin(), box.zmax() - box.zmin());
     // Within these bounds nothing overflows and underflow errors are far below eps.
-    filtered_ = reach.minCoeff() >= 1e-90 && reach.maxCoeff() <= 1e90;
-    eps_ = 1e-14 * reach[0] * reach[1] * reach[2];
+    filtered_ = side.minCoeff() >= 1e-90 && side.maxCoeff() <= 1e90;
+    eps_ = 1e-14 * side[0] * side[1] * side[2];
   }
   CGAL::Orientation operator()(const Point3& x) const {
     if (filtered_) {
@@ -161,13 +164,9 @@ bool replacement_is_valid(const Mesh& m, const Star& s, const Point3& w, const s
   if (!s.valid || !constraints.satisfied_by(w)) return false;
   const std::size_t n = s.ring.size();
   auto ringp = [&](std::size_t i) -> const Point3& { return m.point(s.ring[i % n]); };
-  // Largest |x - w| per coordinate over the mesh and the points to enclose, rounded exactly as
-  // the batches round them: the bound of their filter.
-  const Eigen::Vector3d wv = vec(w);
-  Eigen::Vector3d reach = Eigen::Vector3d::Zero();
-  auto widen = [&](const Point3& p) { reach = reach.cwiseMax((vec(p) - wv).cwiseAbs()); };
-  for (V x : m.vertices()) widen(m.point(x));
-  for (const Point3& o : enclose) widen(o);
+  CGAL::Bbox_3 all = w.bbox();  // everything the batches below test
+  for (V x : m.vertices()) all += m.point(x).bbox();
+  for (const Point3& o : enclose) all += o.bbox();
   // Cone faces: non-degenerate, every remaining vertex and the removed ones on or below (the
   // face's own corners lie on it).
   std::vector<PlaneBatch> cone;
@@ -175,7 +174,7 @@ bool replacement_is_valid(const Mesh& m, const Star& s, const Point3& w, const s
   for (std::size_t i = 0; i < n; ++i) {
     const Point3 &a = ringp(i), &b = ringp(i + 1);
     if (CGAL::collinear(w, a, b)) return false;
-    cone.emplace_back(w, a, b, reach);
+    cone.emplace_back(w, a, b, all);
     const V va = s.ring[i], vb = s.ring[(i + 1) % n];
     for (V x : m.vertices())
       if (x != va && x != vb && cone.back()(m.point(x)) == CGAL::POSITIVE) return false;
@@ -191,17 +190,11 @@ bool replacement_is_valid(const Mesh& m, const Star& s, const Point3& w, const s
   // Points to enclose: only those in the box of the removed vertices and the ring can have left
   // (the region given up lies in the hull of the old star), and the box test is exact.
   if (!enclose.empty()) {
-    double lo[3], hi[3];
-    for (int k = 0; k < 3; ++k) lo[k] = hi[k] = m.point(s.ring[0])[k];
-    auto grow = [&](const Point3& p) {
-      for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
-    };
-    for (V r : s.ring) grow(m.point(r));
-    for (V r : s.removed) grow(m.point(r));
+    CGAL::Bbox_3 star = m.point(s.ring[0]).bbox();
+    for (V r : s.ring) star += m.point(r).bbox();
+    for (V r : s.removed) star += m.point(r).bbox();
     for (const Point3& o : enclose) {
-      bool in = true;
-      for (int k = 0; k < 3; ++k) in = in && o[k] >= lo[k] && o[k] <= hi[k];
-      if (!in) continue;
+      if (!CGAL::do_overlap(star, o.bbox())) continue;  // closed boxes: a point on the side is in
       for (const PlaneBatch& plane : cone)
         if (plane(o) == CGAL::POSITIVE) return false;
     }
@@ -234,12 +227,16 @@ std::vector<std::size_t> above_some_face(const Mesh& hull, const std::vector<Poi
   std::vector<std::size_t> test;
   for (std::size_t i = 0; i < points.size(); ++i)
     if (!std::binary_search(vertices.begin(), vertices.end(), points[i])) test.push_back(i);
+  if (test.empty() || vertices.empty()) return {};
+  CGAL::Bbox_3 all = vertices[0].bbox();
+  for (const Point3& v : vertices) all += v.bbox();
+  for (std::size_t i : test) all += points[i].bbox();
   std::vector<char> above(points.size(), 0);
   for (F f : hull.faces()) {
     const H h = hull.halfedge(f);
-    const Point3 &a = hull.point(hull.source(h)), &b = hull.point(hull.target(h)), &c = hull.point(hull.target(hull.next(h)));
+    const PlaneBatch plane(hull.point(hull.source(h)), hull.point(hull.target(h)), hull.point(hull.target(hull.next(h))), all);
     for (std::size_t i : test)
-      if (!above[i] && CGAL::orientation(a, b, c, points[i]) == CGAL::POSITIVE) {
+      if (!above[i] && plane(points[i]) == CGAL::POSITIVE) {
         if (first_only) return {i};
         above[i] = 1;
       }
