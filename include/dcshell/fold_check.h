@@ -60,6 +60,11 @@ struct FoldCheckOptions {
   /// were not checked); else the path from t_begin is checked exactly as without it, reusing the
   /// pairs' set-up. The unfolder's candidates are checked so (UnfoldOptions::fold_screen).
   double end_first = 0;
+  /// With end_first: when the end fails but not conclusively, stop there too (undecided_at_end)
+  /// instead of checking the path from t_begin. Such a net almost never verifies from t_begin
+  /// (2 of 282 on the shared sets, doc/fold_check.md), and its whole check is the costly part; a
+  /// caller with other candidates sets the net aside and checks it in full only if none verifies.
+  bool end_first_defers = false;
 };
 
 struct FoldCheckResult {
@@ -81,6 +86,9 @@ struct FoldCheckResult {
   /// the message are that failure's, not the first contact along the path.
   bool refuted_at_end = false;
   int end_first_steps = 0;  ///< with end_first: the steps of the end's check (not in steps)
+  /// With end_first_defers: the end of the path failed, not conclusively, and the path before it
+  /// was not checked (undecided, like out_of_budget; t, faces and message are the end's failure).
+  bool undecided_at_end = false;
 };
 
 FoldCheckResult check_folding(const Net& net, const FoldCheckOptions& options = {});

@@ -72,7 +72,9 @@ struct UnfoldOptions {
   /// Each net's check starts with the end of its path, t in [1 - fold_screen, 1], where
   /// straight-line folds mostly fail (FoldCheckOptions::end_first): a conclusive failure there
   /// refutes the net in a few steps, where the whole check would first step through the path
-  /// before it; otherwise the whole path is checked as without it. 0: no screen.
+  /// before it; an inconclusive one sets the net aside with the undecided ones (checked in full
+  /// only when no net verifies; FoldCheckOptions::end_first_defers); otherwise the whole path is
+  /// checked as without it. 0: no screen.
   double fold_screen = 1e-3;
 };
 

@@ -1049,6 +1049,10 @@ FoldCheckResult Checker::run() {
       end.refuted_at_end = true;
       return end;
     }
+    if (!end.verified && opt_.end_first_defers) {
+      end.undecided_at_end = true;
+      return end;
+    }
     end_steps = end.steps;
     std::fill(safe_until_.begin(), safe_until_.end(), 0.0);
   }

@@ -627,13 +627,18 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
       } else {
         FoldCheckOptions fo;
         fo.max_work = std::max<long long>(budget, 1);
-        if (first_pass) fo.end_first = options.fold_screen;  // a deferred net passed it on its first pass
+        // A deferred net was screened on its first pass; one whose end the screen could not
+        // prove is set aside, not checked from t = 0 (it nearly never verifies from there).
+        if (first_pass) fo.end_first = options.fold_screen, fo.end_first_defers = true;
         fc = check_folding(candidate, fo);
         work -= static_cast<long long>(fc.steps + fc.end_first_steps) * std::max(fc.pieces, 1);
-        if (fc.refuted_at_end) hit = fc;
+        if (fc.refuted_at_end || fc.undecided_at_end) hit = fc;
       }
       ++st.fold_checks;
-      if (first_pass && fc.out_of_budget) deferred.push_back({genome, heuristic, fc.t});
+      // Set aside: re-checked only when no net verifies, those that got furthest first, and
+      // those whose end failed last.
+      if (first_pass && (fc.out_of_budget || fc.undecided_at_end))
+        deferred.push_back({genome, heuristic, fc.undecided_at_end ? -1.0 : fc.t});
       if (!have || fc.verified) {
         net = std::move(candidate), st.result = m, st.fold = fc, st.heuristic = heuristic, have = true;
         refuted_early = hit.has_value();
@@ -690,7 +695,8 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
           done = check(w, to_string(h), first_budget(), true);
         }
     };
-    // Undecided nets, the one that got furthest first, with what is left.
+    // Undecided nets (out of budget, or an end the screen could not prove), the one that got
+    // furthest first, with what is left.
     auto recheck_deferred = [&] {
       std::stable_sort(deferred.begin(), deferred.end(), [](const Deferred& a, const Deferred& b) { return a.t > b.t; });
       for (std::size_t i = 0; i < deferred.size() && !done && work > 0; ++i)

@@ -245,6 +245,38 @@ BOOST_AUTO_TEST_CASE(fold_check_conclusive_failures_of_the_end_refute_the_whole_
   BOOST_TEST(verified > 0);
 }
 
+BOOST_AUTO_TEST_CASE(fold_check_end_first_defers_nets_whose_end_it_cannot_prove) {
+  // With end_first_defers a net whose end [0.999, 1] fails without refuting it stops there,
+  // undecided (the end's own failure, not a verdict); every other net gets exactly the result of
+  // end_first alone. Such nets do occur on random ellipsoid trees, and the stop is never taken
+  // for a net whose end verifies.
+  int deferred = 0;
+  for_random_ellipsoid_nets([&](const Net& net) {
+    FoldCheckOptions end, first, defers;
+    end.t_begin = 0.999;
+    first.end_first = defers.end_first = 1e-3;
+    defers.end_first_defers = true;
+    const auto screened = check_folding(net, end), plain = check_folding(net, first), r = check_folding(net, defers);
+    const bool stop = !screened.verified && !screened.conclusive;
+    BOOST_TEST(r.undecided_at_end == stop);
+    BOOST_TEST(!(r.undecided_at_end && r.verified));
+    if (stop) {
+      ++deferred;
+      BOOST_TEST(r.t == screened.t);
+      BOOST_TEST(r.steps == screened.steps);
+      BOOST_TEST(r.message == screened.message);
+      BOOST_TEST(!r.refuted_at_end);
+    } else {
+      BOOST_TEST(r.verified == plain.verified);
+      BOOST_TEST(r.refuted_at_end == plain.refuted_at_end);
+      BOOST_TEST(r.t == plain.t);
+      BOOST_TEST(r.steps == plain.steps);
+      BOOST_TEST(r.message == plain.message);
+    }
+  });
+  BOOST_TEST(deferred > 0);
+}
+
 BOOST_AUTO_TEST_CASE(sampled_collision_finds_crossing_flaps_and_never_a_free_fold) {
   // Crossed from mid-way to the end: the first sampled state (t close to 1) refutes it, after
   // the check's first contact, and the two flaps really intersect there (CGAL, independently).
