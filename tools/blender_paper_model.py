@@ -167,6 +167,48 @@ def overlap_check(islands, tol):
     return pairs, worst
 
 
+def congruence(unfolder, scale):
+    """How far the add-on's islands are from a true net of the mesh (rigid copies of its faces).
+    The add-on merges island vertices closer than sqrt(1e-6 x edge length) (model units) when it
+    joins two islands, so a gap left open around a curved vertex can be glued shut and the faces
+    there deformed. Measured per face edge: |length in the island - length in 3D|; and the
+    vertices that no cut reaches although the faces around them do not add up to 2 pi (a net
+    can only close those by deforming its faces). Angles in doubles from the mesh's coordinates."""
+    m = unfolder.mesh.matrix
+    worst_rel, worst_abs = 0.0, 0.0
+    for island in unfolder.mesh.islands:
+        for face, uvface in island.faces.items():
+            loops = list(face.loops)
+            for i, loop in enumerate(loops):
+                nxt = loops[(i + 1) % len(loops)]
+                l3 = (m @ (nxt.vert.co - loop.vert.co)).length
+                l2 = (uvface.vertices[nxt].co - uvface.vertices[loop].co).length
+                if l3 > 0.0:
+                    worst_rel = max(worst_rel, abs(l2 - l3) / l3)
+                worst_abs = max(worst_abs, abs(l2 - l3))
+    closed, closed_max = 0, 0.0
+    for bmvert in unfolder.mesh.data.verts:
+        if any(unfolder.mesh.edges[e].is_main_cut or not unfolder.mesh.edges[e].main_faces
+               for e in bmvert.link_edges):
+            continue
+        total = 0.0
+        for loop in bmvert.link_loops:
+            # differences in doubles: mathutils computes in single precision
+            p, u, w = ([float(x) for x in m @ l.vert.co]
+                       for l in (loop, loop.link_loop_prev, loop.link_loop_next))
+            a = [x - y for x, y in zip(u, p)]
+            b = [x - y for x, y in zip(w, p)]
+            dot = sum(x * y for x, y in zip(a, b))
+            cr = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+            total += math.atan2(math.sqrt(sum(x * x for x in cr)), dot)
+        deficit = abs(2.0 * math.pi - total)
+        if deficit > 1e-5:  # above the angles' rounding from single-precision coordinates
+            closed += 1
+            closed_max = max(closed_max, deficit)
+    return {"max_edge_error_rel": worst_rel, "max_edge_error": worst_abs / scale,
+            "closed_curved_vertices": closed, "closed_max_deficit_rad": closed_max}
+
+
 def bbox_diagonal(ob):
     xs = [v.co for v in ob.data.vertices]
     lo = [min(c[i] for c in xs) for i in range(3)]
@@ -179,8 +221,9 @@ def process(pm, path, args):
     # The add-on refuses meshes with an edge shorter than 1e-6 or a face smaller than 1e-6 (in
     # its own units, regardless of the model's size): "zero-length edge(s) / zero-area face(s) ...
     # Export failed". Small models (the Cow parts, ~1 unit wide) trip it, so we retry at 10x, 100x,
-    # ... as a user would scale the model up; the algorithm itself is scale-free (its merge
-    # distance is relative to the edge length), and lengths are divided back by the factor.
+    # ... as a user would scale the model up, and lengths are divided back by the factor. The
+    # add-on is not scale-free: it merges island vertices closer than sqrt(1e-6 x edge length),
+    # a tolerance that grows relative to the model as the model shrinks (see congruence()).
     scale, first_error = 1.0, None
     while True:
         clear_scene()
@@ -212,7 +255,7 @@ def process(pm, path, args):
                # islands where the add-on's fast sweepline hit a GeometryError and it fell back to
                # its brute-force one (the only overlap-related state it keeps; it prints nothing)
                unsafe_geometry_islands=sum(1 for i in islands if not i.has_safe_geometry),
-               import_s=t_import, unfold_s=t_unfold)
+               import_s=t_import, unfold_s=t_unfold, **congruence(unfolder, scale))
     if args.dump_cuts:
         m = unfolder.mesh.matrix
         rec["cut_edge_vertices"] = sorted(sorted((e.va.index, e.vb.index)) for e in unfolder.mesh.edges.values()

@@ -223,6 +223,10 @@ def main():
                            blender_unsafe_geometry_islands=unfold["unsafe_geometry_islands"],
                            blender_unfold_s=unfold["unfold_s"],
                            blender_largest_island_faces=max(unfold["island_faces"]))
+                for k in ("max_edge_error_rel", "max_edge_error", "closed_curved_vertices",
+                          "closed_max_deficit_rad"):  # congruence of its islands (older runs: absent)
+                    if k in unfold:
+                        row["blender_" + k] = unfold[k]
                 if unfold.get("native_error"):
                     row["blender_native_error"] = unfold["native_error"][:80]
             else:
