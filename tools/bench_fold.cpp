@@ -90,9 +90,11 @@ int main(int argc, char** argv) {
       "no-shells", "composite models: hull nets only (skip building DC-shells)")(
       "threads", po::value(&threads), "threads for the unfold+fold timing of all shells of a model (1 = sequential)")(
       "fold-fallback-slack", po::value(&selection.fold_fallback_slack),
-      "the selected columns: fallback slack of the fold selection (0: none; default as dcshell unfold)");
+      "the selected columns: fallback slack of the fold selection (0: none; default as dcshell unfold)")(
+      "no-recheck-better", "the selected columns: return the first net that verifies (UnfoldOptions::fold_recheck_work = 0)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
+  if (vm.count("no-recheck-better")) selection.fold_recheck_work = 0;
   if (!fs::is_directory(data)) {
     std::cerr << "bench_fold: no data directory " << data << "; nothing to measure\n";
     return 0;

@@ -576,8 +576,8 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
   // then fresh trees of the heuristics (more directions, jitters, random weights) as long as the
   // work budget lasts. Each net gets a small share of the budget: a failing check usually stops
   // at its first contact after few steps, but an undecided one (out of steps) is set aside and
-  // re-checked with the rest of the budget only when no net verifies. Deterministic: the budget
-  // counts work units (pieces placed, faces decoded), never time.
+  // re-checked with the rest of the budget when no net verifies or a worse one does.
+  // Deterministic: the budget counts work units (pieces placed, faces decoded), never time.
   const int checks = options.fold_candidates <= 0 ? 0 : g.F.size() > 5000 ? 0 : options.fold_candidates;
   Net net;
   bool have = false;
@@ -589,6 +589,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
       Genome genome;
       std::string heuristic;
       double t;
+      double score;
     };
     std::vector<Deferred> deferred;
     // The best overlap-free net's score: a candidate worse than it by more than the slack is
@@ -635,10 +636,10 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
         if (fc.refuted_at_end || fc.undecided_at_end) hit = fc;
       }
       ++st.fold_checks;
-      // Set aside: re-checked only when no net verifies, those that got furthest first, and
-      // those whose end failed last.
+      // Set aside: re-checked when no net verifies, those that got furthest first, and those
+      // whose end failed last; or, when a worse net verifies, the better ones (below).
       if (first_pass && (fc.out_of_budget || fc.undecided_at_end))
-        deferred.push_back({genome, heuristic, fc.undecided_at_end ? -1.0 : fc.t});
+        deferred.push_back({genome, heuristic, fc.undecided_at_end ? -1.0 : fc.t, objective_score(m, ref, options.objective)});
       if (!have || fc.verified) {
         net = std::move(candidate), st.result = m, st.fold = fc, st.heuristic = heuristic, have = true;
         refuted_early = hit.has_value();
@@ -698,6 +699,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     // Undecided nets (out of budget, or an end the screen could not prove), the one that got
     // furthest first, with what is left.
     auto recheck_deferred = [&] {
+      if (done) return;  // kept for the better-scored re-check below
       std::stable_sort(deferred.begin(), deferred.end(), [](const Deferred& a, const Deferred& b) { return a.t > b.t; });
       for (std::size_t i = 0; i < deferred.size() && !done && work > 0; ++i)
         done = check(deferred[i].genome, deferred[i].heuristic, work, false);
@@ -719,6 +721,28 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
       fresh_trees(max_checks);
       recheck_deferred();
       st.fold_fallback = done;
+    }
+    // A net verified, but nets scored better than it were set aside undecided (out of their first
+    // budget) before it: best score first, each gets up to fold_recheck_work of what is left, so
+    // the verified net returned is the best one examined where the budget allows. Nets whose end
+    // screen failed are left out: their full check nearly never verifies (doc/fold_check.md,
+    // session 24).
+    if (done && options.fold_recheck_work > 0 && !deferred.empty()) {
+      const long long recheck_work = scaled_fold_work(options.fold_recheck_work, g.F.size());
+      const double verified_score = objective_score(st.result, ref, options.objective);
+      std::stable_sort(deferred.begin(), deferred.end(),
+                       [](const Deferred& a, const Deferred& b) { return a.score < b.score; });
+      for (std::size_t i = 0; i < deferred.size() && work > 0; ++i) {
+        if (deferred[i].score >= verified_score) break;
+        if (deferred[i].t < 0) continue;
+        if (check(deferred[i].genome, deferred[i].heuristic, std::min(work, recheck_work), false)) {
+          // A fallback's better net may lie within the first slack after all.
+          st.fold_fallback = st.fold_fallback && objective_score(st.result, ref, options.objective) >
+                                                     best_score * (1 + std::max(options.fold_slack, 0.0));
+          break;
+        }
+      }
+      deferred.clear();
     }
     // No net verified and the one returned was refuted by a sampled state or the end screen: its first contact,
     // for the report, unless that check runs out (then the sampled collision stands).
