@@ -91,10 +91,12 @@ int main(int argc, char** argv) {
       "threads", po::value(&threads), "threads for the unfold+fold timing of all shells of a model (1 = sequential)")(
       "fold-fallback-slack", po::value(&selection.fold_fallback_slack),
       "the selected columns: fallback slack of the fold selection (0: none; default as dcshell unfold)")(
-      "no-recheck-better", "the selected columns: return the first net that verifies (UnfoldOptions::fold_recheck_work = 0)");
+      "no-recheck-better", "the selected columns: no re-check of better undecided nets (UnfoldOptions::fold_recheck_work = 0)")(
+      "no-improve", "the selected columns: no fresh trees better than the verified net (UnfoldOptions::fold_improve_attempts = 0)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (vm.count("no-recheck-better")) selection.fold_recheck_work = 0;
+  if (vm.count("no-improve")) selection.fold_improve_attempts = 0;
   if (!fs::is_directory(data)) {
     std::cerr << "bench_fold: no data directory " << data << "; nothing to measure\n";
     return 0;
