@@ -92,11 +92,11 @@ int main(int argc, char** argv) {
       "fold-fallback-slack", po::value(&selection.fold_fallback_slack),
       "the selected columns: fallback slack of the fold selection (0: none; default as dcshell unfold)")(
       "no-recheck-better", "the selected columns: no re-check of better undecided nets (UnfoldOptions::fold_recheck_work = 0)")(
-      "no-improve", "the selected columns: no fresh trees better than the verified net (UnfoldOptions::fold_improve_attempts = 0)");
+      "improve-attempts", po::value(&selection.fold_improve_attempts),
+      "the selected columns: UnfoldOptions::fold_improve_attempts (fresh trees better than the verified net; 0: none, negative: as dcshell unfold)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (vm.count("no-recheck-better")) selection.fold_recheck_work = 0;
-  if (vm.count("no-improve")) selection.fold_improve_attempts = 0;
   if (!fs::is_directory(data)) {
     std::cerr << "bench_fold: no data directory " << data << "; nothing to measure\n";
     return 0;

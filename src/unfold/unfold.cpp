@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <ostream>
 #include <queue>
 #include <stdexcept>
@@ -676,17 +677,25 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     const int period[] = {1, 4, 2, 8};
     int overlap_free[] = {0, 0, 0, 0};
     int attempt = 1;
+    // A fresh tree of heuristic h at the current attempt number, decoded and evaluated (charged
+    // to the budget); none when its tree was seen before.
+    auto fresh_tree = [&](UnfoldHeuristic h, Genome& w) -> std::optional<NetMetrics> {
+      w = heuristic_genome(g, h, attempt, options.seed, preferred);
+      auto folded = folded_groups(g, w);
+      if (!seen.insert(tree_hash(folded)).second) return std::nullopt;
+      work -= 8 + sg.faces();
+      return sg.evaluate(folded);
+    };
     auto fresh_trees = [&](int max_checks) {
       for (; !done && st.fold_checks < max_checks && work > 0 && attempt <= 4 * max_checks; ++attempt)
         for (std::size_t k = 0; k < hs.size(); ++k) {
           if (done || st.fold_checks >= max_checks || work <= 0) break;
           if (attempt > 4 && overlap_free[k] == 0 && attempt % period[k] != 0) continue;
           const UnfoldHeuristic h = hs[k];
-          Genome w = heuristic_genome(g, h, attempt, options.seed, preferred);
-          auto folded = folded_groups(g, w);
-          if (!seen.insert(tree_hash(folded)).second) continue;
-          NetMetrics m = sg.evaluate(folded);
-          work -= 8 + sg.faces();
+          Genome w;
+          const auto evaluated = fresh_tree(h, w);
+          if (!evaluated) continue;
+          const NetMetrics& m = *evaluated;
           if (m.overlapping_pairs == 0) ++overlap_free[k];
           if (!within_slack(m)) {
             if (m.overlapping_pairs == 0) spare.push_back({std::move(w), to_string(h), objective_score(m, ref, options.objective)});
@@ -730,19 +739,17 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     // tree 0.06% shorter than the search's best folds.
     const int improve = options.fold_improve_attempts >= 0 ? options.fold_improve_attempts
                         : options.objective == UnfoldObjective::cut_length ? 8 : 0;
-    if (done && improve > 0 && objective_score(st.result, ref, options.objective) > best_score * (1 + 1e-9)) {
-      const double verified_score = objective_score(st.result, ref, options.objective);
+    const double verified_score = done ? objective_score(st.result, ref, options.objective) : 0;
+    if (done && improve > 0 && verified_score > best_score * (1 + 1e-9)) {
       std::vector<Spare> better;
       for (const int last = attempt + improve; attempt < last && work > 0; ++attempt)
         for (std::size_t k = 0; k < hs.size() && work > 0; ++k) {
-          Genome w = heuristic_genome(g, hs[k], attempt, options.seed, preferred);
-          auto folded = folded_groups(g, w);
-          if (!seen.insert(tree_hash(folded)).second) continue;
-          const NetMetrics m = sg.evaluate(folded);
-          work -= 8 + sg.faces();
+          Genome w;
+          const auto m = fresh_tree(hs[k], w);
+          if (!m) continue;
           ++st.attempts;
-          const double score = objective_score(m, ref, options.objective);
-          if (m.overlapping_pairs == 0 && score < verified_score) better.push_back({std::move(w), to_string(hs[k]), score});
+          const double score = objective_score(*m, ref, options.objective);
+          if (m->overlapping_pairs == 0 && score < verified_score) better.push_back({std::move(w), to_string(hs[k]), score});
         }
       std::stable_sort(better.begin(), better.end(), [](const Spare& a, const Spare& b) { return a.score < b.score; });
       max_score = verified_score;
@@ -757,11 +764,11 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     // session 24).
     if (done && options.fold_recheck_work > 0 && !deferred.empty()) {
       const long long recheck_work = scaled_fold_work(options.fold_recheck_work, g.F.size());
-      const double verified_score = objective_score(st.result, ref, options.objective);
+      const double returned_score = objective_score(st.result, ref, options.objective);  // after the fresh trees
       std::stable_sort(deferred.begin(), deferred.end(),
                        [](const Deferred& a, const Deferred& b) { return a.score < b.score; });
       for (std::size_t i = 0; i < deferred.size() && work > 0; ++i) {
-        if (deferred[i].score >= verified_score) break;
+        if (deferred[i].score >= returned_score) break;
         if (deferred[i].t < 0) continue;
         if (check(deferred[i].genome, deferred[i].heuristic, std::min(work, recheck_work), false)) break;
       }
