@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <functional>
 #include <iostream>
@@ -11,12 +12,18 @@
 
 namespace dcshell::bench {
 
-/// Parses the command line into vm; prints the options and returns false for --help.
+/// Parses the command line into vm; prints the options and returns false for --help. A bad
+/// option or value: one line on stderr and exit status 2 (not an uncaught exception).
 inline bool parse_options(int argc, char** argv, const boost::program_options::options_description& opts,
                           boost::program_options::variables_map& vm) {
   namespace po = boost::program_options;
-  po::store(po::parse_command_line(argc, argv, opts), vm);
-  po::notify(vm);
+  try {
+    po::store(po::parse_command_line(argc, argv, opts), vm);
+    po::notify(vm);
+  } catch (const po::error& e) {
+    std::cerr << std::filesystem::path(argv[0]).filename().string() << ": " << e.what() << " (--help lists the options)\n";
+    std::exit(2);
+  }
   if (vm.count("help")) {
     std::cout << opts << "\n";
     return false;
