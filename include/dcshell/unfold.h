@@ -88,7 +88,7 @@ struct UnfoldOptions {
   /// many more attempt numbers (every heuristic) are made; as many of those scored better than
   /// the verified net are checked, best first, and the first that verifies replaces it. 0: none;
   /// negative: 8 with the cut-length objective, 0 with hull area (there it made 52 of the shared sets'
-  /// 629 nets 5.5% smaller, median, for 15% more selection time, past the 0.1 s per model of
+  /// 629 nets 5.5% smaller, median, for 17% more selection time, past the 0.1 s per model of
   /// Bulbasaur's and Cow's DC-shells; doc/fold_check.md).
   int fold_improve_attempts = -1;
 };
