@@ -68,14 +68,14 @@ def read_jsonl(jsonl, path):
     return unfold, overlap, timed_out
 
 
-def run_ours(path, objective, out_dir, repeat, timeout):
+def run_ours(path, objective, out_dir, repeat, timeout, extra=()):
     """`dcshell unfold` on one mesh; returns its unfold.json shell record (None: bad input or
     timed out) and the median wall time. The wall time includes the folding check, which
     unfold.json's unfold_time_s leaves out."""
     walls = []
     for _ in range(repeat):
         cmd = ["timeout", str(timeout), "nice", str(ROOT / "build" / "dcshell"), "unfold", "--objective", objective,
-               "--force", "--out", str(out_dir), str(path)]
+               *extra, "--force", "--out", str(out_dir), str(path)]
         t0 = time.perf_counter()
         rc = subprocess.run(cmd, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL).returncode
         walls.append(time.perf_counter() - t0)
@@ -169,6 +169,8 @@ def main():
                     help="comma-separated input names: edge-by-edge comparison of the cuts (needs the "
                          "ours results in WORK from a previous run), printed as Markdown; no CSV")
     ap.add_argument("--no-hull-area", action="store_true", help="skip ours with --objective hull-area")
+    ap.add_argument("--ours-arg", action="append", default=[],
+                    help="extra option for dcshell unfold, repeatable (e.g. --ours-arg=--fold-descent-work=0)")
     args = ap.parse_args()
 
     args.work.mkdir(parents=True, exist_ok=True)
@@ -241,7 +243,7 @@ def main():
             if args.skip_ours or (objective == "hull-area" and args.no_hull_area):
                 continue
             shell, wall = run_ours(path, objective, args.work / "ours" / objective / name, args.repeat,
-                                   args.ours_timeout)
+                                   args.ours_timeout, args.ours_arg)
             if shell is None or shell == "timeout":
                 row[key + "_status"] = "bad input" if shell is None else f"timeout({args.ours_timeout}s)"
                 continue

@@ -148,7 +148,7 @@ int run_unfold(int argc, char** argv) {
     std::uint64_t seed = 1;
     int tries = 0, ga_evaluations = 0, frames = 31;
     double scale = 0, fold_slack = 0, fold_fallback_slack = 0;
-    long long fold_work = 0;
+    long long fold_work = 0, fold_descent_work = -1;
     opts.add_options()("help,h", "show this help")("out,o", po::value(&out), "output directory (created atomically)")(
         "no-timings", "leave times out of unfold.json (byte-identical reruns)")(
         "force,f", "replace an existing non-empty output directory")(
@@ -170,7 +170,9 @@ int run_unfold(int argc, char** argv) {
         "fold-fallback-slack", po::value(&fold_fallback_slack)->default_value(UnfoldOptions{}.fold_fallback_slack),
         "when no net within --fold-slack folds, check nets up to this fraction worse, with a second budget (<= --fold-slack: no fallback)")(
         "fold-work", po::value(&fold_work)->default_value(UnfoldOptions{}.fold_work),
-        "work budget of the folding checks per 200 faces of a shell, at most 3x this per shell (pieces placed; a count, not a time)");
+        "work budget of the folding checks per 200 faces of a shell, at most 3x this per shell (pieces placed; a count, not a time)")(
+        "fold-descent-work", po::value(&fold_descent_work)->default_value(UnfoldOptions{}.fold_descent_work),
+        "cut length: budget of the edge-swap descent from the verified net, scaled like --fold-work (0: none; negative: half of --fold-work)");
     std::vector<std::string> inputs;
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
@@ -189,6 +191,7 @@ int run_unfold(int argc, char** argv) {
     uo.tries = tries;
     if (!(fold_slack >= 0) || !std::isfinite(fold_slack)) throw InputError("--fold-slack must be a finite number >= 0");
     if (fold_work < 0) throw InputError("--fold-work must be >= 0");
+    uo.fold_descent_work = fold_descent_work;
     if (!(fold_fallback_slack >= 0) || !std::isfinite(fold_fallback_slack))
       throw InputError("--fold-fallback-slack must be a finite number >= 0");
     uo.fold_slack = fold_slack;

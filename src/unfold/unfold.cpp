@@ -14,6 +14,7 @@
 #include <optional>
 #include <ostream>
 #include <queue>
+#include <set>
 #include <stdexcept>
 #include <unordered_set>
 
@@ -505,6 +506,49 @@ using namespace unfold_detail;
 
 namespace {
 
+// One edge swap of a cut tree: fold the cut group `cut` and cut the folded group `fold` on the
+// cycle that closes (the tree stays a spanning tree), shortening the cut by `gain`.
+struct LengthSwap {
+  int cut = -1, fold = -1;
+  double gain = 0;
+};
+
+// The swap of the tree `folded` that shortens its cut most, skipping those in `tabu`; none when
+// no swap shortens it. The tree's cycles come from a rooted copy of it (parent and depth per
+// facet), walked up from both ends of each cut group: O(groups x depth).
+std::optional<LengthSwap> best_length_swap(const ShellGraph& g, const std::vector<char>& folded,
+                                           const std::set<std::pair<int, int>>& tabu) {
+  auto ends = [&](int gi) {
+    const auto& e = g.edges[g.group_edges[gi][0]];
+    return std::array<int, 2>{g.facet[e.f0], g.facet[e.f1]};
+  };
+  std::vector<std::vector<std::pair<int, int>>> adj(g.num_facets);
+  for (int gi = 0; gi < g.num_groups(); ++gi)
+    if (folded[gi]) {
+      const auto ab = ends(gi);
+      adj[ab[0]].push_back({ab[1], gi}), adj[ab[1]].push_back({ab[0], gi});
+    }
+  std::vector<int> parent(g.num_facets, -1), up_group(g.num_facets, -1), depth(g.num_facets, 0), queue{0};
+  parent[0] = 0;
+  for (std::size_t q = 0; q < queue.size(); ++q)
+    for (const auto& [b, gi] : adj[queue[q]])
+      if (parent[b] < 0) parent[b] = queue[q], up_group[b] = gi, depth[b] = depth[queue[q]] + 1, queue.push_back(b);
+  std::optional<LengthSwap> best;
+  for (int gi = 0; gi < g.num_groups(); ++gi) {
+    if (folded[gi]) continue;
+    auto [a, b] = ends(gi);
+    while (a != b) {
+      if (depth[a] < depth[b]) std::swap(a, b);
+      const int f = up_group[a];
+      const double gain = g.group_length[gi] - g.group_length[f];
+      if (gain > 1e-9 * g.group_length[gi] && (!best || gain > best->gain) && !tabu.count({gi, f}))
+        best = LengthSwap{gi, f, gain};
+      a = parent[a];
+    }
+  }
+  return best;
+}
+
 Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions* ga, UnfoldStats* stats,
                 std::vector<double>* ga_history) {
   auto t0 = std::chrono::steady_clock::now();
@@ -612,6 +656,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     // (options.fold_screen): there the pieces close up, and a conclusive failure refutes the net.
     constexpr int kProbeStates = 16;
     const long long faces = static_cast<long long>(g.F.size());
+    Genome verified_genome;      // the tree of the net returned, once one verified
     bool refuted_early = false;  // st.fold is a sampled state or the end screen, not the check's first contact
     auto check = [&](const Genome& genome, const std::string& heuristic, long long budget, bool first_pass) {
       NetMetrics m;
@@ -643,6 +688,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
         deferred.push_back({genome, heuristic, fc.undecided_at_end ? -1.0 : fc.t, objective_score(m, ref, options.objective)});
       if (!have || fc.verified) {
         net = std::move(candidate), st.result = m, st.fold = fc, st.heuristic = heuristic, have = true;
+        if (fc.verified) verified_genome = genome;
         refuted_early = hit.has_value();
       }
       return fc.verified;
@@ -773,6 +819,54 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
         if (check(deferred[i].genome, deferred[i].heuristic, std::min(work, recheck_work), false)) break;
       }
       deferred.clear();
+    }
+    // Descent (cut length): a verified net still longer than the best overlap-free one is
+    // shortened edge swap by edge swap (fold a cut group, cut the shortest folded group on the
+    // cycle it closes), each batch of swaps kept only when the net stays overlap-free and its
+    // folding still verifies. A swap moves one branch of the net, so the verified motion mostly
+    // survives it, where the short nets the search made fold into collisions (doc/fold_check.md,
+    // session 27). Batches double after a verified one and halve after a refuted one; a single
+    // swap refuted (fold) or overlapping is not tried again. Its own budget, fold_descent_work,
+    // is added to what is left.
+    const long long descent_work = options.fold_descent_work >= 0 ? options.fold_descent_work
+                                   : options.objective == UnfoldObjective::cut_length ? options.fold_work / 2 : 0;
+    if (done && descent_work > 0 && options.objective == UnfoldObjective::cut_length &&
+        objective_score(st.result, ref, options.objective) > best_score * (1 + 1e-9)) {
+      work = std::max(work, 0LL) + scaled_fold_work(descent_work, g.F.size());
+      max_score = objective_score(st.result, ref, options.objective);
+      std::vector<char> tree = folded_groups(g, verified_genome);
+      std::set<std::pair<int, int>> tabu;
+      const int max_checks = st.fold_checks + 4 * checks;
+      int batch = 4;
+      while (st.fold_checks < max_checks && work > 0) {
+        auto next = tree;
+        std::vector<std::pair<int, int>> applied;
+        while (static_cast<int>(applied.size()) < batch && work > 0) {
+          const auto sw = best_length_swap(g, next, tabu);
+          if (!sw) break;
+          next[sw->cut] = 1, next[sw->fold] = 0;
+          work -= 8 + sg.faces();
+          if (sg.evaluate(next).overlapping_pairs != 0) {
+            next[sw->cut] = 0, next[sw->fold] = 1;
+            tabu.insert({sw->cut, sw->fold});
+            continue;
+          }
+          applied.push_back({sw->cut, sw->fold});
+        }
+        if (applied.empty()) break;
+        Genome w(next.size());  // 0 = folded, 1 = cut: Kruskal gives back exactly this tree
+        for (std::size_t i = 0; i < next.size(); ++i) w[i] = next[i] ? 0 : 1;
+        if (check(w, "descent", first_budget(), true)) {
+          tree = std::move(next);
+          batch = std::min(2 * batch, 16);
+          max_score = objective_score(st.result, ref, options.objective);  // never back up (the score weighs hull area too)
+        } else if (applied.size() == 1) {
+          tabu.insert(applied[0]);
+          batch = 1;
+        } else {
+          batch = static_cast<int>(applied.size()) / 2;
+        }
+      }
     }
     // A fallback's net replaced by a better one may lie within the first slack after all.
     st.fold_fallback = st.fold_fallback && objective_score(st.result, ref, options.objective) >
