@@ -65,6 +65,12 @@ struct FoldCheckOptions {
   /// (2 of 282 on the shared sets, doc/fold_check.md), and its whole check is the costly part; a
   /// caller with other candidates sets the net aside and checks it in full only if none verifies.
   bool end_first_defers = false;
+  /// Per net face, a group id, or empty: two rigid pieces whose faces all lie in the same group
+  /// (id >= 0) are taken as proved apart and never examined. For a caller that proved every pair
+  /// of another net of the same shell, and whose groups are the parts both cut trees share: the
+  /// hinges between two faces of one part are the same in both nets, so their relative motion
+  /// is too (the unfolder's edge-swap descent; doc/fold_check.md).
+  std::vector<int> proved_group;
 };
 
 struct FoldCheckResult {

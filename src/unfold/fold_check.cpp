@@ -175,6 +175,7 @@ struct Piece {
   std::vector<std::pair<int, Vec2>> corners;  // (shell vertex, net position), sorted, unique
   Vec2 centre = Vec2::Zero();
   double radius = 0;
+  int proved_group = -1;  // FoldCheckOptions::proved_group of all its faces, else -1
 };
 
 std::vector<int> convex_hull_2d(const std::vector<Vec2>& p, double eps) {
@@ -457,6 +458,11 @@ void Checker::build_pieces() {
       P.angle = m_.angle[j];
       P.hinge_a = m_.axis_a[j];
       P.hinge_u = m_.axis_u[j];
+    }
+    if (opt_.proved_group.size() == net_.shell_faces.size()) {
+      P.proved_group = opt_.proved_group[P.faces.front()];
+      for (int f : P.faces)
+        if (opt_.proved_group[f] != P.proved_group) P.proved_group = -1;
     }
     for (int f : P.faces)
       for (int k = 0; k < 3; ++k) P.corners.emplace_back(net_.shell_faces[f][k], net_.corners[f][k]);
@@ -1137,6 +1143,7 @@ FoldCheckResult Checker::step_path(double t0, bool screening) {
     double step = dt;
     int limit_p = -1, limit_q = -1;  // the pair that limits the step (reported at the step limit)
     for (auto [p, q] : cand) {
+      if (pc_[p].proved_group >= 0 && pc_[p].proved_group == pc_[q].proved_group) continue;
       int& id = slot(p, q);
       if (id == kDone) continue;
       if (t >= end_from_[id]) {

@@ -658,7 +658,9 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     const long long faces = static_cast<long long>(g.F.size());
     Genome verified_genome;      // the tree of the net returned, once one verified
     bool refuted_early = false;  // st.fold is a sampled state or the end screen, not the check's first contact
-    auto check = [&](const Genome& genome, const std::string& heuristic, long long budget, bool first_pass) {
+    // `proved`: FoldCheckOptions::proved_group (the descent below).
+    auto check = [&](const Genome& genome, const std::string& heuristic, long long budget, bool first_pass,
+                     const std::vector<int>* proved = nullptr) {
       NetMetrics m;
       Net candidate = finish_net(g, genome, &m);
       work -= 8 + faces;
@@ -677,6 +679,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
         // A deferred net was screened on its first pass; one whose end the screen could not
         // prove is set aside, not checked from t = 0 (it nearly never verifies from there).
         if (first_pass) fo.end_first = options.fold_screen, fo.end_first_defers = true;
+        if (proved) fo.proved_group = *proved;
         fc = check_folding(candidate, fo);
         work -= static_cast<long long>(fc.steps + fc.end_first_steps) * std::max(fc.pieces, 1);
         if (fc.refuted_at_end || fc.undecided_at_end) hit = fc;
@@ -827,14 +830,20 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     // survives it, where the short nets the search made fold into collisions (doc/fold_check.md,
     // session 27). Batches double after a verified one and halve after a refuted one; a single
     // swap refuted (fold) or overlapping is not tried again. Its own budget, fold_descent_work,
-    // is added to what is left.
+    // is added to what is left. Each check examines only the pairs of pieces the swaps moved
+    // apart (below); the net it ends with is checked in full.
     const long long descent_work = options.fold_descent_work >= 0 ? options.fold_descent_work
-                                   : options.objective == UnfoldObjective::cut_length ? options.fold_work / 2 : 0;
+                                   : options.objective == UnfoldObjective::cut_length ? options.fold_work : 0;
     if (done && descent_work > 0 && options.objective == UnfoldObjective::cut_length &&
         objective_score(st.result, ref, options.objective) > best_score * (1 + 1e-9)) {
       work = std::max(work, 0LL) + scaled_fold_work(descent_work, g.F.size());
       max_score = objective_score(st.result, ref, options.objective);
       std::vector<char> tree = folded_groups(g, verified_genome);
+      const Net start_net = net;
+      const NetMetrics start_result = st.result;
+      const FoldCheckResult start_fold = st.fold;
+      const std::string start_heuristic = st.heuristic;
+      bool moved = false;
       std::set<std::pair<int, int>> tabu;
       const int max_checks = st.fold_checks + 4 * checks;
       int batch = 4;
@@ -856,8 +865,20 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
         if (applied.empty()) break;
         Genome w(next.size());  // 0 = folded, 1 = cut: Kruskal gives back exactly this tree
         for (std::size_t i = 0; i < next.size(); ++i) w[i] = next[i] ? 0 : 1;
-        if (check(w, "descent", first_budget(), true)) {
+        // Every pair of the current net is proved; within a part both trees share, the hinges
+        // between two faces, so their relative motion, are unchanged: only pairs across parts
+        // are checked.
+        UnionFind parts(g.num_facets);
+        for (int gi = 0; gi < g.num_groups(); ++gi)
+          if (tree[gi] && next[gi]) {
+            const auto& e = g.edges[g.group_edges[gi][0]];
+            parts.unite(g.facet[e.f0], g.facet[e.f1]);
+          }
+        std::vector<int> part(g.F.size());
+        for (std::size_t f = 0; f < g.F.size(); ++f) part[f] = parts.find(g.facet[f]);
+        if (check(w, "descent", first_budget(), true, &part)) {
           tree = std::move(next);
+          moved = true;
           batch = std::min(2 * batch, 16);
           max_score = objective_score(st.result, ref, options.objective);  // never back up (the score weighs hull area too)
         } else if (applied.size() == 1) {
@@ -866,6 +887,12 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
         } else {
           batch = static_cast<int>(applied.size()) / 2;
         }
+      }
+      // The net returned is proved in full, not by the chain of partial proofs (which is sound,
+      // but this keeps every verdict the check's own); the start net stands if it does not verify.
+      if (moved) {
+        if (!check(verified_genome, "descent", std::max(work, 0LL) + first_work, false))
+          net = start_net, st.result = start_result, st.fold = start_fold, st.heuristic = start_heuristic;
       }
     }
     // A fallback's net replaced by a better one may lie within the first slack after all.

@@ -152,6 +152,26 @@ BOOST_AUTO_TEST_CASE(fold_check_reports_the_first_contact_of_crossing_flaps) {
   BOOST_TEST(ok.verified, ok.message);
 }
 
+BOOST_AUTO_TEST_CASE(fold_check_skips_pairs_within_a_proved_group_only) {
+  // The crossing flaps (faces 2 and 3): with both in one proved group their pair is taken as
+  // proved; with the flaps in different groups it is checked and found as without groups.
+  Net bad = flap_net(-170 * deg, -170 * deg, {-0.8, 0.5}, {1.8, 0.5});
+  const auto plain = check_folding(bad);
+  BOOST_TEST_REQUIRE(!plain.verified);
+  FoldCheckOptions same;
+  same.proved_group = {0, 0, 0, 0};
+  BOOST_TEST(check_folding(bad, same).verified);
+  FoldCheckOptions apart;
+  apart.proved_group = {0, 0, 0, 1};
+  const auto r = check_folding(bad, apart);
+  BOOST_TEST(!r.verified);
+  BOOST_TEST(((r.face_a == 2 && r.face_b == 3)), r.message);
+  BOOST_TEST(r.t == plain.t);
+  FoldCheckOptions wrong_size;  // not one id per face: ignored
+  wrong_size.proved_group = {0, 0};
+  BOOST_TEST(!check_folding(bad, wrong_size).verified);
+}
+
 BOOST_AUTO_TEST_CASE(fold_check_catches_a_collision_that_exists_only_mid_way) {
   // The long right flap (1.8 from its hinge) turns by 178 degrees, the left one by 160: the right
   // tip sweeps through the left flap around t = 0.8 and is past it (below it) at the end. Both
