@@ -97,10 +97,10 @@ struct UnfoldOptions {
   /// the pairs of pieces the swaps moved apart, the net returned checked in full); the descent
   /// gets this much work of its own (scaled like fold_work) and up to 4 x fold_candidates checks;
   /// budget left at a local optimum goes to a second descent from the same net, one swap at a time.
-  /// 0: none; negative: fold_work with cut length, 0 with hull area (the swaps are by length).
-  /// On the 69 inputs of doc/unfold_blender.md it made 15 returned nets shorter (median 5.7%, up
-  /// to 22%) for 22% more time over the 69, most of it on the shells that gained (up to 2.5 s for
-  /// 598 faces; doc/fold_check.md).
+  /// 0: none; negative: 2 x fold_work with cut length, 0 with hull area (the swaps are by
+  /// length). On the 69 inputs of doc/unfold_blender.md it made 15 returned nets shorter (median
+  /// 5.7%, up to 23%) for 31% more time over the 69, most of it on the shells that gained (up to
+  /// 3.7 s for 598 faces; doc/fold_check.md).
   long long fold_descent_work = -1;
 };
 

@@ -172,7 +172,7 @@ int run_unfold(int argc, char** argv) {
         "fold-work", po::value(&fold_work)->default_value(UnfoldOptions{}.fold_work),
         "work budget of the folding checks per 200 faces of a shell, at most 3x this per shell (pieces placed; a count, not a time)")(
         "fold-descent-work", po::value(&fold_descent_work)->default_value(UnfoldOptions{}.fold_descent_work),
-        "cut length: budget of the edge-swap descent from the verified net, scaled like --fold-work (0: none; negative: --fold-work)");
+        "cut length: budget of the edge-swap descent from the verified net, scaled like --fold-work (0: none; negative: 2x --fold-work)");
     std::vector<std::string> inputs;
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;

@@ -833,7 +833,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     // is added to what is left. Each check examines only the pairs of pieces the swaps moved
     // apart (below); the net it ends with is checked in full.
     const long long descent_work = options.fold_descent_work >= 0 ? options.fold_descent_work
-                                   : options.objective == UnfoldObjective::cut_length ? options.fold_work : 0;
+                                   : options.objective == UnfoldObjective::cut_length ? 2 * options.fold_work : 0;
     if (done && descent_work > 0 && options.objective == UnfoldObjective::cut_length &&
         objective_score(st.result, ref, options.objective) > best_score * (1 + 1e-9)) {
       work = std::max(work, 0LL) + scaled_fold_work(descent_work, g.F.size());
