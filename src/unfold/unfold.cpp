@@ -121,8 +121,8 @@ std::vector<char> folded_groups(const ShellGraph& g, const Genome& w) {
   UnionFind uf(g.num_facets);
   std::vector<char> folded(g.num_groups(), 0);
   for (int gi : order) {
-    const auto& e = g.edges[g.group_edges[gi][0]];
-    folded[gi] = uf.unite(g.facet[e.f0], g.facet[e.f1]);
+    const auto ab = g.group_facets(gi);
+    folded[gi] = uf.unite(ab[0], ab[1]);
   }
   return folded;
 }
@@ -518,14 +518,10 @@ struct LengthSwap {
 // facet), walked up from both ends of each cut group: O(groups x depth).
 std::optional<LengthSwap> best_length_swap(const ShellGraph& g, const std::vector<char>& folded,
                                            const std::set<std::pair<int, int>>& tabu) {
-  auto ends = [&](int gi) {
-    const auto& e = g.edges[g.group_edges[gi][0]];
-    return std::array<int, 2>{g.facet[e.f0], g.facet[e.f1]};
-  };
   std::vector<std::vector<std::pair<int, int>>> adj(g.num_facets);
   for (int gi = 0; gi < g.num_groups(); ++gi)
     if (folded[gi]) {
-      const auto ab = ends(gi);
+      const auto ab = g.group_facets(gi);
       adj[ab[0]].push_back({ab[1], gi}), adj[ab[1]].push_back({ab[0], gi});
     }
   std::vector<int> parent(g.num_facets, -1), up_group(g.num_facets, -1), depth(g.num_facets, 0), queue{0};
@@ -536,7 +532,7 @@ std::optional<LengthSwap> best_length_swap(const ShellGraph& g, const std::vecto
   std::optional<LengthSwap> best;
   for (int gi = 0; gi < g.num_groups(); ++gi) {
     if (folded[gi]) continue;
-    auto [a, b] = ends(gi);
+    auto [a, b] = g.group_facets(gi);
     while (a != b) {
       if (depth[a] < depth[b]) std::swap(a, b);
       const int f = up_group[a];
@@ -547,6 +543,28 @@ std::optional<LengthSwap> best_length_swap(const ShellGraph& g, const std::vecto
     }
   }
   return best;
+}
+
+// Per face, the part of the facet graph it lies in when only the groups folded in both trees
+// join facets: two faces of one part are joined by the same hinges in both nets
+// (FoldCheckOptions::proved_group).
+std::vector<int> shared_parts(const ShellGraph& g, const std::vector<char>& a, const std::vector<char>& b) {
+  UnionFind parts(g.num_facets);
+  for (int gi = 0; gi < g.num_groups(); ++gi)
+    if (a[gi] && b[gi]) {
+      const auto ab = g.group_facets(gi);
+      parts.unite(ab[0], ab[1]);
+    }
+  std::vector<int> part(g.F.size());
+  for (std::size_t f = 0; f < g.F.size(); ++f) part[f] = parts.find(g.facet[f]);
+  return part;
+}
+
+// a + b for budgets >= 0, saturating at the cap scaled_fold_work uses (no overflow).
+long long add_work(long long a, long long b) {
+  constexpr long long cap = 1LL << 62;
+  a = std::clamp(a, 0LL, cap), b = std::clamp(b, 0LL, cap);
+  return a > cap - b ? cap : a + b;
 }
 
 Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions* ga, UnfoldStats* stats,
@@ -771,7 +789,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     // slack left out first, in score order, then fresh trees).
     if (!done && options.fold_fallback_slack > options.fold_slack) {
       max_score = best_score * (1 + options.fold_fallback_slack);
-      work = std::max(work, 0LL) + scaled_fold_work(options.fold_fallback_work, g.F.size());
+      work = add_work(work, scaled_fold_work(options.fold_fallback_work, g.F.size()));
       std::stable_sort(spare.begin(), spare.end(), [](const Spare& a, const Spare& b) { return a.score < b.score; });
       const int max_checks = st.fold_checks + checks;
       for (std::size_t i = 0; i < spare.size() && !done && st.fold_checks < max_checks && work > 0; ++i)
@@ -833,10 +851,10 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     // is added to what is left. Each check examines only the pairs of pieces the swaps moved
     // apart (below); the net it ends with is checked in full.
     const long long descent_work = options.fold_descent_work >= 0 ? options.fold_descent_work
-                                   : options.objective == UnfoldObjective::cut_length ? 2 * options.fold_work : 0;
+                                   : options.objective == UnfoldObjective::cut_length ? add_work(options.fold_work, options.fold_work) : 0;
     if (done && descent_work > 0 && options.objective == UnfoldObjective::cut_length &&
         objective_score(st.result, ref, options.objective) > best_score * (1 + 1e-9)) {
-      work = std::max(work, 0LL) + scaled_fold_work(descent_work, g.F.size());
+      work = add_work(work, scaled_fold_work(descent_work, g.F.size()));
       auto score_now = [&] { return objective_score(st.result, ref, options.objective); };
       struct Kept {
         Net net;
@@ -881,14 +899,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
           // Every pair of the current net is proved; within a part both trees share, the hinges
           // between two faces, so their relative motion, are unchanged: only pairs across parts
           // are checked.
-          UnionFind parts(g.num_facets);
-          for (int gi = 0; gi < g.num_groups(); ++gi)
-            if (tree[gi] && next[gi]) {
-              const auto& e = g.edges[g.group_edges[gi][0]];
-              parts.unite(g.facet[e.f0], g.facet[e.f1]);
-            }
-          std::vector<int> part(g.F.size());
-          for (std::size_t f = 0; f < g.F.size(); ++f) part[f] = parts.find(g.facet[f]);
+          const std::vector<int> part = shared_parts(g, tree, next);
           if (check(w, "descent", first_budget(), true, &part)) {
             tree = std::move(next);
             moved = true;
@@ -906,7 +917,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
       };
       // The net returned is proved in full, not by the chain of partial proofs (which is sound,
       // but this keeps every verdict the check's own).
-      auto full_check = [&] { return check(verified_genome, "descent", std::max(work, 0LL) + first_work, false); };
+      auto full_check = [&] { return check(verified_genome, "descent", add_work(work, first_work), false); };
       if (descend(false) && !full_check()) restore(start);
       // Budget left (the descent stopped at a local optimum): once more from the start net with
       // single swaps, the refused ones retried after each accepted one; the shorter end is kept.

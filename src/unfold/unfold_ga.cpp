@@ -136,8 +136,7 @@ class LocalSearch {
     for (int gi = 0; gi < ng; ++gi) to_fine_[ev.sg.use_coarse ? ev.sg.group_map[gi] : gi] = gi;
     ends_.resize(ng);
     for (int gi = 0; gi < ng; ++gi) {
-      const auto& e = G_.edges[G_.group_edges[gi][0]];
-      ends_[gi] = {G_.facet[e.f0], G_.facet[e.f1]};
+      ends_[gi] = G_.group_facets(gi);
     }
   }
 

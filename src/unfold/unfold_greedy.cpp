@@ -64,8 +64,7 @@ class Greedy {
     ends_.resize(G.num_groups());
     facet_groups_.resize(nk);
     for (int gi = 0; gi < G.num_groups(); ++gi) {
-      const auto& e = G.edges[G.group_edges[gi][0]];
-      ends_[gi] = {G.facet[e.f0], G.facet[e.f1]};
+      ends_[gi] = G.group_facets(gi);
       facet_groups_[ends_[gi][0]].push_back(gi);
       facet_groups_[ends_[gi][1]].push_back(gi);
     }

@@ -43,6 +43,11 @@ struct ShellGraph {
   double scale = 1;  ///< bounding-box diagonal
 
   int num_groups() const { return static_cast<int>(group_edges.size()); }
+  /// The two facets group gi joins (an edge of the facet graph).
+  std::array<int, 2> group_facets(int gi) const {
+    const auto& e = edges[group_edges[gi][0]];
+    return {facet[e.f0], facet[e.f1]};
+  }
 };
 
 /// Builds the graph from triangles. Throws InputError (message without file name) when the

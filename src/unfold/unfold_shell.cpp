@@ -276,8 +276,8 @@ SearchGraph make_search_graph(const ShellGraph& g, double flat_angle) {
     if (c.facet[f] != fan_facet[f]) return sg;
   std::map<std::pair<int, int>, int> fine_group;
   for (int gi = 0; gi < g.num_groups(); ++gi) {
-    const auto& e = g.edges[g.group_edges[gi][0]];
-    fine_group[std::minmax(g.facet[e.f0], g.facet[e.f1])] = gi;
+    const auto ab = g.group_facets(gi);
+    fine_group[std::minmax(ab[0], ab[1])] = gi;
   }
   sg.group_map.assign(g.num_groups(), -1);
   for (int ci = 0; ci < c.num_groups(); ++ci) {
