@@ -99,8 +99,8 @@ struct UnfoldOptions {
   /// budget left at a local optimum goes to a second descent from the same net, one swap at a time.
   /// 0: none; negative: 2 x fold_work with cut length, 0 with hull area (the swaps are by
   /// length). On the 69 inputs of doc/unfold_blender.md it made 15 returned nets shorter (median
-  /// 5.7%, up to 23%) for 31% more time over the 69, most of it on the shells that gained (up to
-  /// 3.7 s for 598 faces; doc/fold_check.md).
+  /// 5.7%, up to 23%) for 26% more time over the 69 (medians of 3), most of it on the shells
+  /// that gained (up to 3.6 s for 598 faces; doc/fold_check.md).
   long long fold_descent_work = -1;
 };
 
