@@ -1,5 +1,6 @@
 // Cut tree -> net: Kruskal on facet groups, placement along the tree, gluing of edges whose two
-// sides land on each other, features; plus the heuristics' weights and the retry search.
+// sides land on each other, features; the heuristics' weights and the retry search; and the
+// unfolder itself: search, ranking, then the fold selection (fold_selection.h).
 #include "dcshell/unfold.h"
 
 #include <CGAL/convex_hull_2.h>
@@ -11,16 +12,13 @@
 #include <limits>
 #include <map>
 #include <numeric>
-#include <optional>
 #include <ostream>
-#include <queue>
-#include <set>
 #include <stdexcept>
 #include <unordered_set>
 
-#include "dcshell/fold_check.h"
 #include "dcshell/net_overlap.h"
 #include "dcshell/unfold_ga.h"
+#include "unfold/fold_selection.h"
 #include "unfold/unfold_internal.h"
 
 namespace dcshell {
@@ -56,21 +54,6 @@ std::string to_string(UnfoldObjective o) { return o == UnfoldObjective::hull_are
 namespace unfold_detail {
 
 namespace {
-
-struct UnionFind {
-  std::vector<int> p;
-  explicit UnionFind(int n) : p(n) { std::iota(p.begin(), p.end(), 0); }
-  int find(int x) {
-    while (p[x] != x) x = p[x] = p[p[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a == b) return false;
-    p[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-};
 
 using Vec2 = Eigen::Vector2d;
 
@@ -382,8 +365,6 @@ double objective_score(const NetMetrics& m, const NetMetrics& ref, UnfoldObjecti
 
 // ---- search ----
 
-namespace {
-
 Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std::uint64_t seed,
                         const std::vector<Eigen::Vector3d>& preferred) {
   Rng rng(mix_seed(seed, static_cast<std::uint64_t>(h), static_cast<std::uint64_t>(attempt)));
@@ -400,6 +381,8 @@ Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std
     default: return random_weights(g, rng);
   }
 }
+
+namespace {
 
 // Default effort: a cut tree costs about 8 + faces units (a fixed part, then linear), and the
 // default spends about 100 units per heuristic: a few trees for a small shell, one per heuristic
@@ -506,67 +489,6 @@ using namespace unfold_detail;
 
 namespace {
 
-// One edge swap of a cut tree: fold the cut group `cut` and cut the folded group `fold` on the
-// cycle that closes (the tree stays a spanning tree), shortening the cut by `gain`.
-struct LengthSwap {
-  int cut = -1, fold = -1;
-  double gain = 0;
-};
-
-// The swap of the tree `folded` that shortens its cut most, skipping those in `tabu`; none when
-// no swap shortens it. The tree's cycles come from a rooted copy of it (parent and depth per
-// facet), walked up from both ends of each cut group: O(groups x depth).
-std::optional<LengthSwap> best_length_swap(const ShellGraph& g, const std::vector<char>& folded,
-                                           const std::set<std::pair<int, int>>& tabu) {
-  std::vector<std::vector<std::pair<int, int>>> adj(g.num_facets);
-  for (int gi = 0; gi < g.num_groups(); ++gi)
-    if (folded[gi]) {
-      const auto ab = g.group_facets(gi);
-      adj[ab[0]].push_back({ab[1], gi}), adj[ab[1]].push_back({ab[0], gi});
-    }
-  std::vector<int> parent(g.num_facets, -1), up_group(g.num_facets, -1), depth(g.num_facets, 0), queue{0};
-  parent[0] = 0;
-  for (std::size_t q = 0; q < queue.size(); ++q)
-    for (const auto& [b, gi] : adj[queue[q]])
-      if (parent[b] < 0) parent[b] = queue[q], up_group[b] = gi, depth[b] = depth[queue[q]] + 1, queue.push_back(b);
-  std::optional<LengthSwap> best;
-  for (int gi = 0; gi < g.num_groups(); ++gi) {
-    if (folded[gi]) continue;
-    auto [a, b] = g.group_facets(gi);
-    while (a != b) {
-      if (depth[a] < depth[b]) std::swap(a, b);
-      const int f = up_group[a];
-      const double gain = g.group_length[gi] - g.group_length[f];
-      if (gain > 1e-9 * g.group_length[gi] && (!best || gain > best->gain) && !tabu.count({gi, f}))
-        best = LengthSwap{gi, f, gain};
-      a = parent[a];
-    }
-  }
-  return best;
-}
-
-// Per face, the part of the facet graph it lies in when only the groups folded in both trees
-// join facets: two faces of one part are joined by the same hinges in both nets
-// (FoldCheckOptions::proved_group).
-std::vector<int> shared_parts(const ShellGraph& g, const std::vector<char>& a, const std::vector<char>& b) {
-  UnionFind parts(g.num_facets);
-  for (int gi = 0; gi < g.num_groups(); ++gi)
-    if (a[gi] && b[gi]) {
-      const auto ab = g.group_facets(gi);
-      parts.unite(ab[0], ab[1]);
-    }
-  std::vector<int> part(g.F.size());
-  for (std::size_t f = 0; f < g.F.size(); ++f) part[f] = parts.find(g.facet[f]);
-  return part;
-}
-
-// a + b for budgets >= 0, saturating at the cap scaled_fold_work uses (no overflow).
-long long add_work(long long a, long long b) {
-  constexpr long long cap = 1LL << 62;
-  a = std::clamp(a, 0LL, cap), b = std::clamp(b, 0LL, cap);
-  return a > cap - b ? cap : a + b;
-}
-
 Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions* ga, UnfoldStats* stats,
                 std::vector<double>* ga_history) {
   auto t0 = std::chrono::steady_clock::now();
@@ -634,312 +556,14 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     for (int i : idx) ranked.push_back(search.evaluated[i]);
   }
   st.first = ref;
-  // Fold selection: the first overlap-free net whose folding path is verified; else the best
-  // one. Candidates come cheapest first: the search's nets in score order (already evaluated),
-  // then fresh trees of the heuristics (more directions, jitters, random weights) as long as the
-  // work budget lasts. Each net gets a small share of the budget: a failing check usually stops
-  // at its first contact after few steps, but an undecided one (out of steps) is set aside and
-  // re-checked with the rest of the budget when no net verifies or a worse one does.
-  // Deterministic: the budget counts work units (pieces placed, faces decoded), never time.
+  // Fold selection (fold_selection.h): the first overlap-free net whose folding path verifies,
+  // else the best one. Shells above 5,000 faces take the best net unchecked.
   const int checks = options.fold_candidates <= 0 ? 0 : g.F.size() > 5000 ? 0 : options.fold_candidates;
   Net net;
   bool have = false;
   if (checks > 0) {
-    long long work = scaled_fold_work(options.fold_work, g.F.size());
-    std::unordered_set<std::uint64_t> seen;
-    for (const auto& c : search.evaluated) seen.insert(tree_hash(folded_groups(g, c.genome)));
-    struct Deferred {
-      Genome genome;
-      std::string heuristic;
-      double t;
-      double score;
-    };
-    std::vector<Deferred> deferred;
-    // The best overlap-free net's score: a candidate worse than it by more than the slack is
-    // not worth a check (it would be returned only for its fold).
-    double best_score = std::numeric_limits<double>::infinity();
-    for (const auto& c : ranked)
-      if (c.metrics.overlapping_pairs == 0) best_score = std::min(best_score, objective_score(c.metrics, ref, options.objective));
-    double max_score = best_score * (1 + std::max(options.fold_slack, 0.0));
-    auto within_slack = [&](const NetMetrics& m) {
-      return m.overlapping_pairs == 0 && objective_score(m, ref, options.objective) <= max_score;
-    };
-    // Most nets whose straight-line fold collides are still interpenetrating just before the end
-    // (doc/fold_check.md, *Sampled refutation*): a few sampled states refute them for about one
-    // step's work, where the check would run to their first contact. Only nets no sampled state
-    // refutes get the check; the returned net's verdict is a checked one wherever the budget allows.
-    // A sampled state places every face, a step of the check every rigid piece: nets with more
-    // than 4 faces a piece (a finely triangulated cube: 1,200 faces, 6 pieces; DC-shells have
-    // 1-3) are checked directly. The rest are screened on the end of their path first
-    // (options.fold_screen): there the pieces close up, and a conclusive failure refutes the net.
-    constexpr int kProbeStates = 16;
-    const long long faces = static_cast<long long>(g.F.size());
-    Genome verified_genome;      // the tree of the net returned, once one verified
-    bool refuted_early = false;  // st.fold is a sampled state or the end screen, not the check's first contact
-    // `proved`: FoldCheckOptions::proved_group (the descent below).
-    auto check = [&](const Genome& genome, const std::string& heuristic, long long budget, bool first_pass,
-                     const std::vector<int>* proved = nullptr) {
-      NetMetrics m;
-      Net candidate = finish_net(g, genome, &m);
-      work -= 8 + faces;
-      if (m.overlapping_pairs != 0 || (have && !within_slack(m))) return false;
-      std::optional<FoldCheckResult> hit;
-      if (first_pass && faces <= 4LL * rigid_pieces(candidate)) {  // a deferred net was probed on its first pass
-        hit = find_sampled_collision(candidate, kProbeStates);
-        work -= (hit ? hit->steps : kProbeStates - 1) * faces;
-      }
-      FoldCheckResult fc;
-      if (hit) {
-        fc = *hit;
-      } else {
-        FoldCheckOptions fo;
-        fo.max_work = std::max<long long>(budget, 1);
-        // A deferred net was screened on its first pass; one whose end the screen could not
-        // prove is set aside, not checked from t = 0 (it nearly never verifies from there).
-        if (first_pass) fo.end_first = options.fold_screen, fo.end_first_defers = true;
-        if (proved) fo.proved_group = *proved;
-        fc = check_folding(candidate, fo);
-        work -= static_cast<long long>(fc.steps + fc.end_first_steps) * std::max(fc.pieces, 1);
-        if (fc.refuted_at_end || fc.undecided_at_end) hit = fc;
-      }
-      ++st.fold_checks;
-      // Set aside: re-checked when no net verifies, those that got furthest first, and those
-      // whose end failed last; or, when a worse net verifies, the better ones (below).
-      if (first_pass && (fc.out_of_budget || fc.undecided_at_end))
-        deferred.push_back({genome, heuristic, fc.undecided_at_end ? -1.0 : fc.t, objective_score(m, ref, options.objective)});
-      if (!have || fc.verified) {
-        net = std::move(candidate), st.result = m, st.fold = fc, st.heuristic = heuristic, have = true;
-        if (fc.verified) verified_genome = genome;
-        refuted_early = hit.has_value();
-      }
-      return fc.verified;
-    };
-    bool done = false;
-    const long long first_work = scaled_fold_work(options.fold_first_work, g.F.size());
-    auto first_budget = [&] { return std::min(first_work, work); };
-    // Overlap-free nets left out for the slack, with their scores: the fallback's first candidates.
-    struct Spare {
-      Genome genome;
-      std::string heuristic;
-      double score;
-    };
-    std::vector<Spare> spare;
-    for (std::size_t i = 0; i < ranked.size() && !done && st.fold_checks < checks && work > 0; ++i) {
-      if (ranked[i].metrics.overlapping_pairs != 0) break;
-      if (have && !within_slack(ranked[i].metrics)) {
-        spare.push_back({ranked[i].genome, ranked[i].heuristic, objective_score(ranked[i].metrics, ref, options.objective)});
-        continue;
-      }
-      done = check(ranked[i].genome, ranked[i].heuristic, first_budget(), true);
-    }
-    // Fresh trees: attempt numbers past the search's, every heuristic in turn (only the ones
-    // that differ from the trees seen so far cost a decode and an overlap test).
-    const auto preferred = preferred_directions(g);
-    const std::vector<UnfoldHeuristic> hs = {UnfoldHeuristic::steepest, UnfoldHeuristic::flat,
-                                             UnfoldHeuristic::min_perimeter, UnfoldHeuristic::random};
-    // Past the first attempts, a heuristic that has not given one overlap-free tree yet is tried
-    // only every period-th attempt: on the shells where fresh trees are needed at all, nearly
-    // all of them overlap, and steepest edge gave 35% of the overlap-free ones, min-perimeter
-    // 9%, flat 5%, random 1% (the shared sets' DC-shells, doc/fold_check.md).
-    const int period[] = {1, 4, 2, 8};
-    int overlap_free[] = {0, 0, 0, 0};
-    int attempt = 1;
-    // A fresh tree of heuristic h at the current attempt number, decoded and evaluated (charged
-    // to the budget); none when its tree was seen before.
-    auto fresh_tree = [&](UnfoldHeuristic h, Genome& w) -> std::optional<NetMetrics> {
-      w = heuristic_genome(g, h, attempt, options.seed, preferred);
-      auto folded = folded_groups(g, w);
-      if (!seen.insert(tree_hash(folded)).second) return std::nullopt;
-      work -= 8 + sg.faces();
-      return sg.evaluate(folded);
-    };
-    auto fresh_trees = [&](int max_checks) {
-      for (; !done && st.fold_checks < max_checks && work > 0 && attempt <= 4 * max_checks; ++attempt)
-        for (std::size_t k = 0; k < hs.size(); ++k) {
-          if (done || st.fold_checks >= max_checks || work <= 0) break;
-          if (attempt > 4 && overlap_free[k] == 0 && attempt % period[k] != 0) continue;
-          const UnfoldHeuristic h = hs[k];
-          Genome w;
-          const auto evaluated = fresh_tree(h, w);
-          if (!evaluated) continue;
-          const NetMetrics& m = *evaluated;
-          if (m.overlapping_pairs == 0) ++overlap_free[k];
-          if (!within_slack(m)) {
-            if (m.overlapping_pairs == 0) spare.push_back({std::move(w), to_string(h), objective_score(m, ref, options.objective)});
-            continue;
-          }
-          st.attempts++;
-          done = check(w, to_string(h), first_budget(), true);
-        }
-    };
-    // Undecided nets (out of budget, or an end the screen could not prove), the one that got
-    // furthest first, with what is left.
-    auto recheck_deferred = [&] {
-      if (done) return;  // kept for the better-scored re-check below
-      std::stable_sort(deferred.begin(), deferred.end(), [](const Deferred& a, const Deferred& b) { return a.t > b.t; });
-      for (std::size_t i = 0; i < deferred.size() && !done && work > 0; ++i)
-        done = check(deferred[i].genome, deferred[i].heuristic, work, false);
-      deferred.clear();
-    };
-    fresh_trees(checks);
-    recheck_deferred();
-    // Fallback: no net within the slack folds. A net whose straight-line folding is proved beats
-    // a better-scored one that collides, so the nets up to the wider fallback slack get what is
-    // left of the budget plus a small one of their own, and as many checks again (the nets the
-    // slack left out first, in score order, then fresh trees).
-    if (!done && options.fold_fallback_slack > options.fold_slack) {
-      max_score = best_score * (1 + options.fold_fallback_slack);
-      work = add_work(work, scaled_fold_work(options.fold_fallback_work, g.F.size()));
-      std::stable_sort(spare.begin(), spare.end(), [](const Spare& a, const Spare& b) { return a.score < b.score; });
-      const int max_checks = st.fold_checks + checks;
-      for (std::size_t i = 0; i < spare.size() && !done && st.fold_checks < max_checks && work > 0; ++i)
-        if (spare[i].score <= max_score) done = check(spare[i].genome, spare[i].heuristic, first_budget(), true);
-      fresh_trees(max_checks);
-      recheck_deferred();
-      st.fold_fallback = done;
-    }
-    // A net verified but scores worse than the best overlap-free one (whose folds collide):
-    // fresh trees of a few more attempt numbers that score better than it are checked, best
-    // first, as many as attempts, and the first that verifies replaces it. The search's best is
-    // not the best tree there is: on the triakis icosahedron (cut length) the nets within 0.3% of
-    // it collide, the first ranked net that verifies is 12% longer, and a fresh min-perimeter
-    // tree 0.06% shorter than the search's best folds.
-    const int improve = options.fold_improve_attempts >= 0 ? options.fold_improve_attempts
-                        : options.objective == UnfoldObjective::cut_length ? 8 : 0;
-    const double verified_score = done ? objective_score(st.result, ref, options.objective) : 0;
-    if (done && improve > 0 && verified_score > best_score * (1 + 1e-9)) {
-      std::vector<Spare> better;
-      for (const int last = attempt + improve; attempt < last && work > 0; ++attempt)
-        for (std::size_t k = 0; k < hs.size() && work > 0; ++k) {
-          Genome w;
-          const auto m = fresh_tree(hs[k], w);
-          if (!m) continue;
-          ++st.attempts;
-          const double score = objective_score(*m, ref, options.objective);
-          if (m->overlapping_pairs == 0 && score < verified_score) better.push_back({std::move(w), to_string(hs[k]), score});
-        }
-      std::stable_sort(better.begin(), better.end(), [](const Spare& a, const Spare& b) { return a.score < b.score; });
-      max_score = verified_score;
-      const int max_checks = st.fold_checks + improve;
-      for (std::size_t i = 0; i < better.size() && st.fold_checks < max_checks && work > 0; ++i)
-        if (check(better[i].genome, better[i].heuristic, first_budget(), true)) break;
-    }
-    // A net verified, but nets scored better than it were set aside undecided (out of their first
-    // budget) before it: best score first, each gets up to fold_recheck_work of what is left, so
-    // the verified net returned is the best one examined where the budget allows. Nets whose end
-    // screen failed are left out: their full check nearly never verifies (doc/fold_check.md,
-    // session 24).
-    if (done && options.fold_recheck_work > 0 && !deferred.empty()) {
-      const long long recheck_work = scaled_fold_work(options.fold_recheck_work, g.F.size());
-      const double returned_score = objective_score(st.result, ref, options.objective);  // after the fresh trees
-      std::stable_sort(deferred.begin(), deferred.end(),
-                       [](const Deferred& a, const Deferred& b) { return a.score < b.score; });
-      for (std::size_t i = 0; i < deferred.size() && work > 0; ++i) {
-        if (deferred[i].score >= returned_score) break;
-        if (deferred[i].t < 0) continue;
-        if (check(deferred[i].genome, deferred[i].heuristic, std::min(work, recheck_work), false)) break;
-      }
-      deferred.clear();
-    }
-    // Descent (cut length): a verified net still longer than the best overlap-free one is
-    // shortened edge swap by edge swap (fold a cut group, cut the shortest folded group on the
-    // cycle it closes), each batch of swaps kept only when the net stays overlap-free and its
-    // folding still verifies. A swap moves one branch of the net, so the verified motion mostly
-    // survives it, where the short nets the search made fold into collisions (doc/fold_check.md,
-    // session 27). Batches double after a verified one and halve after a refuted one; a single
-    // swap refuted (fold) or overlapping is not tried again. Its own budget, fold_descent_work,
-    // is added to what is left. Each check examines only the pairs of pieces the swaps moved
-    // apart (below); the net it ends with is checked in full.
-    const long long descent_work = options.fold_descent_work >= 0 ? options.fold_descent_work
-                                   : options.objective == UnfoldObjective::cut_length ? add_work(options.fold_work, options.fold_work) : 0;
-    if (done && descent_work > 0 && options.objective == UnfoldObjective::cut_length &&
-        objective_score(st.result, ref, options.objective) > best_score * (1 + 1e-9)) {
-      work = add_work(work, scaled_fold_work(descent_work, g.F.size()));
-      auto score_now = [&] { return objective_score(st.result, ref, options.objective); };
-      struct Kept {
-        Net net;
-        NetMetrics result;
-        FoldCheckResult fold;
-        std::string heuristic;
-        Genome genome;
-      };
-      auto keep = [&] { return Kept{net, st.result, st.fold, st.heuristic, verified_genome}; };
-      auto restore = [&](const Kept& k) {
-        net = k.net, st.result = k.result, st.fold = k.fold, st.heuristic = k.heuristic, verified_genome = k.genome;
-        max_score = score_now();
-      };
-      const Kept start = keep();
-      const int max_checks = st.fold_checks + 4 * checks;
-      // One descent from the net kept now; true when it moved. `single`: one swap per check, and
-      // the refused swaps are tried again after each accepted one.
-      auto descend = [&](bool single) {
-        max_score = score_now();
-        std::vector<char> tree = folded_groups(g, verified_genome);
-        std::set<std::pair<int, int>> tabu;
-        bool moved = false;
-        int batch = single ? 1 : 4;
-        while (st.fold_checks < max_checks && work > 0) {
-          auto next = tree;
-          std::vector<std::pair<int, int>> applied;
-          while (static_cast<int>(applied.size()) < batch && work > 0) {
-            const auto sw = best_length_swap(g, next, tabu);
-            if (!sw) break;
-            next[sw->cut] = 1, next[sw->fold] = 0;
-            work -= 8 + sg.faces();
-            if (sg.evaluate(next).overlapping_pairs != 0) {
-              next[sw->cut] = 0, next[sw->fold] = 1;
-              tabu.insert({sw->cut, sw->fold});
-              continue;
-            }
-            applied.push_back({sw->cut, sw->fold});
-          }
-          if (applied.empty()) break;
-          Genome w(next.size());  // 0 = folded, 1 = cut: Kruskal gives back exactly this tree
-          for (std::size_t i = 0; i < next.size(); ++i) w[i] = next[i] ? 0 : 1;
-          // Every pair of the current net is proved; within a part both trees share, the hinges
-          // between two faces, so their relative motion, are unchanged: only pairs across parts
-          // are checked.
-          const std::vector<int> part = shared_parts(g, tree, next);
-          if (check(w, "descent", first_budget(), true, &part)) {
-            tree = std::move(next);
-            moved = true;
-            if (single) tabu.clear();
-            batch = single ? 1 : std::min(2 * batch, 16);
-            max_score = score_now();  // never back up (the score weighs hull area too)
-          } else if (applied.size() == 1) {
-            tabu.insert(applied[0]);
-            batch = 1;
-          } else {
-            batch = static_cast<int>(applied.size()) / 2;
-          }
-        }
-        return moved;
-      };
-      // The net returned is proved in full, not by the chain of partial proofs (which is sound,
-      // but this keeps every verdict the check's own).
-      auto full_check = [&] { return check(verified_genome, "descent", add_work(work, first_work), false); };
-      if (descend(false) && !full_check()) restore(start);
-      // Budget left (the descent stopped at a local optimum): once more from the start net with
-      // single swaps, the refused ones retried after each accepted one; the shorter end is kept.
-      // On ellip (48 faces) that reaches Blender's 15.996 where the batches stop at 16.22.
-      if (st.fold_checks < max_checks && work > 0) {
-        const Kept first = keep();
-        restore(start);
-        if (!(descend(true) && score_now() < objective_score(first.result, ref, options.objective) && full_check()))
-          restore(first);
-      }
-    }
-    // A fallback's net replaced by a better one may lie within the first slack after all.
-    st.fold_fallback = st.fold_fallback && objective_score(st.result, ref, options.objective) >
-                                               best_score * (1 + std::max(options.fold_slack, 0.0));
-    // No net verified and the one returned was refuted by a sampled state or the end screen: its first contact,
-    // for the report, unless that check runs out (then the sampled collision stands).
-    if (!done && refuted_early) {
-      FoldCheckOptions fo;
-      fo.max_work = std::max<long long>(first_work, 1);
-      FoldCheckResult fc = check_folding(net, fo);
-      if (!fc.out_of_budget) st.fold = fc;
-    }
+    FoldSelection selection(g, sg, options, ranked, search.evaluated, ref, st);
+    if ((have = selection.run(checks))) net = std::move(selection.net());
   }
   if (!have) {
     net = finish_net(g, ranked.front().genome, &st.result);

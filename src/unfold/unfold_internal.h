@@ -3,9 +3,11 @@
 #pragma once
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <numeric>
 #include <random>
 #include <string>
 #include <vector>
@@ -47,6 +49,23 @@ struct ShellGraph {
   std::array<int, 2> group_facets(int gi) const {
     const auto& e = edges[group_edges[gi][0]];
     return {facet[e.f0], facet[e.f1]};
+  }
+};
+
+/// Disjoint sets of facets or faces (path halving; the smaller index is the root, so the
+/// representatives, and everything ordered by them, do not depend on the order of unions).
+struct UnionFind {
+  std::vector<int> p;
+  explicit UnionFind(int n) : p(n) { std::iota(p.begin(), p.end(), 0); }
+  int find(int x) {
+    while (p[x] != x) x = p[x] = p[p[x]];
+    return x;
+  }
+  bool unite(int a, int b) {
+    a = find(a), b = find(b);
+    if (a == b) return false;
+    p[std::max(a, b)] = std::min(a, b);
+    return true;
   }
 };
 
@@ -115,6 +134,10 @@ Genome steepest_edge_weights(const ShellGraph& g, const Eigen::Vector3d& c);
 Genome flat_tree_weights(const ShellGraph& g, const Eigen::Vector3d& c);
 Genome min_perimeter_weights(const ShellGraph& g, Rng& rng, double jitter);
 Genome random_weights(const ShellGraph& g, Rng& rng);
+/// The tree of heuristic h at retry `attempt`: attempt 0 is a fixed generic direction (the first
+/// net does not depend on the seed), then the shell's `preferred` directions, then random ones.
+Genome heuristic_genome(const ShellGraph& g, UnfoldHeuristic h, int attempt, std::uint64_t seed,
+                        const std::vector<Eigen::Vector3d>& preferred);
 
 /// Overlap-aware greedy cut tree (unfold_greedy.cpp): Kruskal over the groups in a priority
 /// order on the search graph, placing pieces rigidly as they are joined and refusing a join

@@ -16,21 +16,6 @@ namespace dcshell::unfold_detail {
 
 namespace {
 
-struct UnionFind {
-  std::vector<int> p;
-  explicit UnionFind(int n) : p(n) { std::iota(p.begin(), p.end(), 0); }
-  int find(int x) {
-    while (p[x] != x) x = p[x] = p[p[x]];
-    return x;
-  }
-  bool unite(int a, int b) {
-    a = find(a), b = find(b);
-    if (a == b) return false;
-    p[std::max(a, b)] = std::min(a, b);
-    return true;
-  }
-};
-
 std::uint64_t edge_key(int a, int b) {
   return (static_cast<std::uint64_t>(static_cast<std::uint32_t>(a)) << 32) | static_cast<std::uint32_t>(b);
 }
