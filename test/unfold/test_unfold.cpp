@@ -4,6 +4,7 @@
 
 #include <map>
 #include <random>
+#include <set>
 #include <sstream>
 
 #include "dcshell/convex_hull.h"
@@ -14,6 +15,7 @@
 #include "dcshell/read_mesh.h"
 #include "dcshell/unfold.h"
 #include "dcshell/unfold_ga.h"
+#include "unfold/fold_selection.h"
 #include "unfold/unfold_internal.h"
 #include "unfold_test_util.h"
 
@@ -435,4 +437,66 @@ BOOST_AUTO_TEST_CASE(fine_pyramid_unfolds_overlap_free) {
     Net net = unfold_convex_mesh(m, o, &st);
     check_good_net(net, "fine pyramid, " + to_string(h));
   }
+}
+
+BOOST_AUTO_TEST_CASE(best_length_swap_is_the_best_exchange_of_the_tree) {
+  // Against brute force over every (cut group, folded group) exchange that leaves a spanning tree
+  // of the facets: the swap returned has the largest gain, skips the tabu pair, and none is
+  // returned when no exchange shortens the cut. shared_parts joins exactly the faces linked by
+  // groups folded in both trees.
+  using namespace dcshell::unfold_detail;
+  int swaps = 0;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    ShellGraph g = build_shell_graph(ellipsoid_hull(24 + 4 * static_cast<int>(seed), seed, 1.6, 2.3), 1e-4);
+    Rng rng(seed);
+    auto folded = folded_groups(g, random_weights(g, rng));
+    auto spanning = [&](const std::vector<char>& t) {
+      UnionFind uf(g.num_facets);
+      int joined = 0;
+      for (int gi = 0; gi < g.num_groups(); ++gi)
+        if (t[gi]) {
+          const auto ab = g.group_facets(gi);
+          if (!uf.unite(ab[0], ab[1])) return false;  // a cycle
+          ++joined;
+        }
+      return joined == g.num_facets - 1;
+    };
+    BOOST_TEST_REQUIRE(spanning(folded));
+    std::set<std::pair<int, int>> tabu;
+    for (int round = 0; round < 2; ++round) {
+      double best = 0;
+      std::pair<int, int> best_pair{-1, -1};
+      for (int c = 0; c < g.num_groups(); ++c)
+        for (int f = 0; f < g.num_groups(); ++f) {
+          if (folded[c] || !folded[f] || tabu.count({c, f})) continue;
+          auto t = folded;
+          t[c] = 1, t[f] = 0;
+          const double gain = g.group_length[c] - g.group_length[f];
+          if (gain > 1e-9 * g.group_length[c] && gain > best && spanning(t)) best = gain, best_pair = {c, f};
+        }
+      const auto sw = best_length_swap(g, folded, tabu);
+      BOOST_TEST(sw.has_value() == (best_pair.first >= 0));
+      if (!sw) break;
+      BOOST_TEST(std::abs(sw->gain - best) <= 1e-12 * best);
+      auto t = folded;
+      t[sw->cut] = 1, t[sw->fold] = 0;
+      BOOST_TEST(spanning(t));
+      // shared_parts of the tree and its swap: the swap's two groups split nothing else.
+      const auto part = shared_parts(g, folded, t);
+      UnionFind both(g.num_facets);
+      for (int gi = 0; gi < g.num_groups(); ++gi)
+        if (folded[gi] && t[gi]) {
+          const auto ab = g.group_facets(gi);
+          both.unite(ab[0], ab[1]);
+        }
+      for (std::size_t a = 0; a < g.F.size(); a += 3)
+        for (std::size_t b = a + 1; b < g.F.size(); b += 5)
+          BOOST_TEST((part[a] == part[b]) == (both.find(g.facet[a]) == both.find(g.facet[b])));
+      std::set<int> parts(part.begin(), part.end());
+      BOOST_TEST(parts.size() == 2u);  // a spanning tree less one folded group
+      ++swaps;
+      tabu.insert({sw->cut, sw->fold});
+    }
+  }
+  BOOST_TEST(swaps >= 8);  // random trees of irregular hulls are far from the shortest
 }
