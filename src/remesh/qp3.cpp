@@ -5,6 +5,7 @@
 #include <CGAL/QP_functions.h>
 #include <CGAL/QP_models.h>
 
+#include <algorithm>
 #include <type_traits>
 #include <utility>
 
@@ -25,7 +26,8 @@ Program make_program(const std::vector<Row>& rows) {
   return p;
 }
 
-std::optional<Eigen::Vector3d> extract(const Solution& s) {
+std::optional<Eigen::Vector3d> extract(const Solution& s, bool* infeasible = nullptr) {
+  if (infeasible) *infeasible = s.is_infeasible();
   if (!s.is_optimal()) return std::nullopt;
   Eigen::Vector3d y;
   int j = 0;
@@ -34,15 +36,13 @@ std::optional<Eigen::Vector3d> extract(const Solution& s) {
   return y;
 }
 
-}  // namespace
-
-std::optional<Eigen::Vector3d> solve_lp3_exact(const Eigen::Vector3d& c, const std::vector<Row>& rows) {
+Program make_lp(const Eigen::Vector3d& c, const std::vector<Row>& rows) {
   Program p = make_program(rows);
   for (int j = 0; j < 3; ++j) p.set_c(j, c[j]);
-  return extract(CGAL::solve_linear_program(p, CGAL::Gmpzf()));
+  return p;
 }
 
-std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, const std::vector<Row>& rows) {
+Program make_qp(const Eigen::Vector3d& target, const std::vector<Row>& rows) {
   // |y - t|^2 = y·y - 2 t·y + t·t; CGAL minimises y'Dy + c'y + c0 and set_d sets 2D.
   Program p = make_program(rows);
   for (int j = 0; j < 3; ++j) {
@@ -50,6 +50,63 @@ std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, co
     p.set_c(j, -2.0 * target[j]);
   }
   p.set_c0(target.squaredNorm());
+  return p;
+}
+
+// Constraint generation (qp3.h). A row joins when the rounded optimum violates it at all (no
+// tolerance): a near-duplicate of a row already in, off by 1e-17, then joins too, so the answer
+// is the one the whole program gives.
+template <class Solve>
+std::optional<Eigen::Vector3d> by_generation(const std::vector<Row>& rows, const std::vector<std::size_t>& start,
+                                             Solve solve) {
+  constexpr int kRounds = 8;
+  std::vector<char> in(rows.size(), 0);
+  std::vector<std::size_t> idx;
+  for (std::size_t i : start)
+    if (i < rows.size() && !in[i]) in[i] = 1, idx.push_back(i);
+  for (int round = 0; round < kRounds && idx.size() < rows.size(); ++round) {
+    std::sort(idx.begin(), idx.end());  // the program's own row order
+    std::vector<Row> sub;
+    for (std::size_t i : idx) sub.push_back(rows[i]);
+    bool infeasible = false;
+    const std::optional<Eigen::Vector3d> y = solve(sub, &infeasible);
+    if (!y) {
+      if (infeasible) return std::nullopt;
+      break;  // unbounded on these rows (an LP): all of them decide
+    }
+    bool added = false;
+    for (std::size_t i = 0; i < rows.size(); ++i)
+      if (!in[i] && rows[i].a.dot(*y) > rows[i].b) in[i] = 1, idx.push_back(i), added = true;
+    if (!added) return y;
+  }
+  return solve(rows, nullptr);
+}
+
+}  // namespace
+
+std::optional<Eigen::Vector3d> solve_lp3_exact(const Eigen::Vector3d& c, const std::vector<Row>& rows,
+                                               const std::vector<std::size_t>& start) {
+  return by_generation(rows, start, [&](const std::vector<Row>& sub, bool* infeasible) {
+    const Program p = make_lp(c, sub);  // alive while the solution is read
+    return extract(CGAL::solve_linear_program(p, CGAL::Gmpzf()), infeasible);
+  });
+}
+
+std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, const std::vector<Row>& rows,
+                                               const std::vector<std::size_t>& start) {
+  return by_generation(rows, start, [&](const std::vector<Row>& sub, bool* infeasible) {
+    const Program p = make_qp(target, sub);
+    return extract(CGAL::solve_quadratic_program(p, CGAL::Gmpzf()), infeasible);
+  });
+}
+
+std::optional<Eigen::Vector3d> solve_lp3_exact(const Eigen::Vector3d& c, const std::vector<Row>& rows) {
+  const Program p = make_lp(c, rows);
+  return extract(CGAL::solve_linear_program(p, CGAL::Gmpzf()));
+}
+
+std::optional<Eigen::Vector3d> solve_qp3_exact(const Eigen::Vector3d& target, const std::vector<Row>& rows) {
+  const Program p = make_qp(target, rows);
   return extract(CGAL::solve_quadratic_program(p, CGAL::Gmpzf()));
 }
 

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "dcshell/certify.h"
 #include "dcshell/convex_hull.h"
@@ -218,11 +219,42 @@ Separator best_face_separator(const Mesh& owner, const std::vector<Point3>& othe
 // n·x <= d for every point, exactly (sign = +1), or >= d (sign = -1).
 bool all_on_side(const std::vector<Point3>& pts, const CutPlane& p) {
   for (const Point3& x : pts) {
+    // Floating point first: the sum of four terms is off by at most 4.5 units of rounding of
+    // their magnitudes (1e-15 is twice that); only values within it are decided exactly.
+    const double t[4] = {p.normal.x() * x.x(), p.normal.y() * x.y(), p.normal.z() * x.z(), -p.offset};
+    const double e = t[0] + t[1] + t[2] + t[3];
+    const double bound = 1e-15 * (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) + std::abs(t[3]));
+    if (e < -bound) continue;
+    if (e > bound) return false;
     using Q = CGAL::Exact_rational;
-    const Q e = Q(p.normal.x()) * Q(x.x()) + Q(p.normal.y()) * Q(x.y()) + Q(p.normal.z()) * Q(x.z()) - Q(p.offset);
-    if (e > 0) return false;
+    const Q q = Q(p.normal.x()) * Q(x.x()) + Q(p.normal.y()) * Q(x.y()) + Q(p.normal.z()) * Q(x.z()) - Q(p.offset);
+    if (q > 0) return false;
   }
   return true;
+}
+
+// Shells far apart (a box gap along some axis of more than twice the larger box diagonal) are
+// separated by the axis-aligned plane half-way across the gap: exact in doubles (a coordinate
+// compared with the plane's offset), never within reach of a shell remeshed within its volume
+// bound in practice, and found without testing every face of one against every vertex of the
+// other (a set of hundreds of shells has mostly such pairs).
+std::optional<CutPlane> far_apart_plane(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
+  auto diag = [](const CGAL::Bbox_3& x) {
+    return std::sqrt(CGAL::square(x.xmax() - x.xmin()) + CGAL::square(x.ymax() - x.ymin()) + CGAL::square(x.zmax() - x.zmin()));
+  };
+  const double need = 2 * std::max(diag(a), diag(b));
+  for (int k = 0; k < 3; ++k) {
+    for (int side : {1, -1}) {
+      const double hi = side > 0 ? a.max(k) : b.max(k), lo = side > 0 ? b.min(k) : a.min(k);
+      if (!(lo - hi > need)) continue;
+      const double mid = 0.5 * (hi + lo);
+      if (!(hi < mid && mid < lo)) continue;
+      Eigen::Vector3d n = Eigen::Vector3d::Zero();
+      n[k] = side;  // a keeps n·x <= side * mid
+      return CutPlane{n, side * mid};
+    }
+  }
+  return std::nullopt;
 }
 
 }  // namespace
@@ -231,9 +263,18 @@ std::vector<ShellConstraints> neighbour_constraints(const std::vector<Mesh>& she
                                                     std::vector<std::pair<std::size_t, std::size_t>>* unseparated) {
   std::vector<ShellConstraints> out(shells.size());
   std::vector<std::vector<Point3>> pts;
-  for (const Mesh& m : shells) pts.push_back(mesh_points(m));
+  std::vector<CGAL::Bbox_3> box;
+  for (const Mesh& m : shells) {
+    pts.push_back(mesh_points(m));
+    box.push_back(CGAL::bbox_3(pts.back().begin(), pts.back().end()));
+  }
   for (std::size_t i = 0; i < shells.size(); ++i)
     for (std::size_t j = i + 1; j < shells.size(); ++j) {
+      if (const auto far = far_apart_plane(box[i], box[j])) {
+        out[i].cut_planes.push_back(*far);
+        out[j].cut_planes.push_back(far->flipped());
+        continue;
+      }
       Separator si = best_face_separator(shells[i], pts[j]), sj = best_face_separator(shells[j], pts[i]);
       std::size_t owner = i, other = j;
       if (!si.found && !sj.found) {

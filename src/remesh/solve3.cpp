@@ -101,10 +101,11 @@ std::pair<std::size_t, double> most_violated(const std::vector<Row>& rows, const
 // three independent normals keep W pointed, so the vertex arguments below still hold; the
 // objective never decreases, so dropping rows only costs steps (bounded: past the cap the exact
 // solver decides), and a step costs a constant instead of |W|^3.
+// `used` collects the indices of the rows W took in (the exact fallback starts from them).
 template <class Certify>
 std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vector<Row> w, Eigen::Vector3d y,
                                         bool with_singles_and_pairs, const Eigen::Vector3d& t, Certify certified,
-                                        bool& undecided) {
+                                        bool& undecided, std::vector<std::size_t>& used) {
   undecided = false;
   const bool prune = !with_singles_and_pairs;
   std::vector<Row> seen = w;  // every row W ever held (the Farkas test below)
@@ -120,6 +121,7 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
       if (r.b + rows[p].b + kBox * (r.a + rows[p].a).lpNorm<1>() < -kFeasTol) return std::nullopt;
     w.push_back(rows[p]);
     seen.push_back(rows[p]);
+    used.push_back(p);
     const std::size_t m = w.size(), q = m - 1;
     bool found = false;
     if (with_singles_and_pairs) {  // QP: projections onto p's plane and onto its lines with others
@@ -203,11 +205,12 @@ std::optional<Eigen::Vector3d> solve_lp3(const Eigen::Vector3d& c, const std::ve
     return -c.dot(v.dual[0]) >= -kMulTol && -c.dot(v.dual[1]) >= -kMulTol && -c.dot(v.dual[2]) >= -kMulTol;
   };
   bool undecided = false;
-  auto r = generate(rows, box_rows(), y, false, c, certified, undecided);
+  std::vector<std::size_t> used;
+  auto r = generate(rows, box_rows(), y, false, c, certified, undecided, used);
   if (r && r->lpNorm<Eigen::Infinity>() < 0.5 * R) return r;
   if (!r && !undecided) return std::nullopt;
   if (!take_exact()) return std::nullopt;
-  return solve_lp3_exact(c, rows);
+  return solve_lp3_exact(c, rows, used);
 }
 
 std::optional<Eigen::Vector3d> solve_qp3(const Eigen::Vector3d& t, const std::vector<Row>& rows) {
@@ -218,14 +221,15 @@ std::optional<Eigen::Vector3d> solve_qp3(const Eigen::Vector3d& t, const std::ve
     return d.dot(v.dual[0]) >= -kMulTol && d.dot(v.dual[1]) >= -kMulTol && d.dot(v.dual[2]) >= -kMulTol;
   };
   bool undecided = false;
+  std::vector<std::size_t> used;
   std::optional<Eigen::Vector3d> r;
   if (t.lpNorm<Eigen::Infinity>() < 0.5 * kBox) {
-    r = generate(rows, box_rows(), t, true, t, certified, undecided);
+    r = generate(rows, box_rows(), t, true, t, certified, undecided, used);
     if (r && r->lpNorm<Eigen::Infinity>() < 0.5 * kBox) return r;
     if (!r && !undecided) return std::nullopt;
   }
   if (!take_exact()) return std::nullopt;
-  return solve_qp3_exact(t, rows);
+  return solve_qp3_exact(t, rows, used);
 }
 
 }  // namespace dcshell::remesh_detail

@@ -262,6 +262,57 @@ BOOST_AUTO_TEST_CASE(fast_lp_on_many_and_degenerate_rows) {
   BOOST_CHECK_LT(remesh_detail::exact_solves() - exact0, std::size_t(trials / 10));
 }
 
+BOOST_AUTO_TEST_CASE(exact_solve_by_generation_gives_the_whole_programs_answer) {
+  // The exact fallback solves only the rows the floating-point search took in, then adds what
+  // its optimum violates. Its answer must be the whole program's: the same point for a QP (the
+  // optimum is unique), the same objective for an LP, the same infeasible verdicts. Programs:
+  // random near rows, each binding row with a copy tightened by 1e-14 (accepting a violation of
+  // that size would give a different point), 200 far rows, and a start of 0 to 5 of the rows.
+  std::mt19937 rng(17);
+  auto uni = [&] { return (rng() + 0.5) / 4294967296.0 * 2 - 1; };
+  int infeasible = 0, solved = 0, unbounded = 0;
+  for (int trial = 0; trial < 120; ++trial) {
+    BOOST_TEST_CONTEXT("trial " << trial) {
+      std::vector<remesh_detail::Row> rows;
+      const int n = trial % 4 == 0 ? 2 : 6 + trial % 20;
+      for (int i = 0; i < n; ++i) {
+        const Eigen::Vector3d a = Eigen::Vector3d(uni(), uni(), uni()).normalized();
+        const double b = 0.1 + 0.5 * (uni() + 1);
+        rows.push_back({a, b});
+        rows.push_back({a, b - 1e-14});
+      }
+      if (trial % 3 == 1) rows.push_back({Eigen::Vector3d(uni(), uni(), uni()).normalized(), -0.05 - 0.5 * (uni() + 1)});
+      if (trial % 4 != 0)
+        for (int i = 0; i < 200; ++i) rows.push_back({Eigen::Vector3d(uni(), uni(), uni()).normalized(), 20 + 30 * (uni() + 1)});
+      std::shuffle(rows.begin(), rows.end(), rng);
+      std::vector<std::size_t> start;
+      for (int i = 0; i < trial % 6; ++i) start.push_back(rng() % rows.size());
+      const Eigen::Vector3d t(3 * uni(), 3 * uni(), 3 * uni());
+      const Eigen::Vector3d c = Eigen::Vector3d(uni(), uni(), uni()).normalized();
+      const auto qp = remesh_detail::solve_qp3_exact(t, rows, start), qp_all = remesh_detail::solve_qp3_exact(t, rows);
+      BOOST_REQUIRE_EQUAL(bool(qp), bool(qp_all));
+      if (qp) {
+        ++solved;
+        BOOST_CHECK(*qp == *qp_all);
+      } else {
+        ++infeasible;
+      }
+      const auto lp = remesh_detail::solve_lp3_exact(c, rows, start), lp_all = remesh_detail::solve_lp3_exact(c, rows);
+      BOOST_REQUIRE_EQUAL(bool(lp), bool(lp_all));
+      if (lp) {
+        BOOST_CHECK_EQUAL(c.dot(*lp), c.dot(*lp_all));
+        for (const auto& r : rows) BOOST_CHECK_LE(r.a.dot(*lp) - r.b, 1e-14 * (1 + std::abs(r.b) + lp->norm()));
+      } else if (qp) {
+        ++unbounded;  // feasible (the QP has an optimum) but no LP optimum
+      }
+    }
+  }
+  BOOST_TEST_MESSAGE("infeasible " << infeasible << ", solved " << solved << ", unbounded LPs " << unbounded);
+  BOOST_CHECK_GT(infeasible, 8);
+  BOOST_CHECK_GT(solved, 60);
+  BOOST_CHECK_GT(unbounded, 5);
+}
+
 BOOST_AUTO_TEST_SUITE_END()
 
 BOOST_AUTO_TEST_SUITE(remesh)
@@ -440,6 +491,34 @@ BOOST_AUTO_TEST_CASE(edge_contact_gets_an_exact_separating_plane) {
   const std::vector<Mesh> free{remesh_convex_shell(a, ShellConstraints{}, opt), remesh_convex_shell(b, ShellConstraints{}, opt)};
   BOOST_CHECK(!certify(free).certified());
   }
+  }
+}
+
+BOOST_AUTO_TEST_CASE(far_apart_shells_get_an_axis_plane_half_way) {
+  // Shells whose boxes are apart by more than twice the larger diagonal along an axis get the
+  // axis-aligned plane half-way across the gap (no face-against-vertex search); closer ones
+  // keep a plane of their own faces. Either way each shell satisfies its constraint exactly and
+  // the other shell lies strictly beyond it.
+  const Mesh a = convex_hull_mesh(ellipsoid_points(60, 1.0, 0.5, 0.3, 3));
+  for (double gap : {10.0, 3.0}) {
+    BOOST_TEST_CONTEXT("centres " << gap << " apart") {
+      std::vector<Point3> moved;
+      for (const Point3& p : ellipsoid_points(60, 0.4, 0.5, 0.3, 4)) moved.emplace_back(p.x(), p.y() - gap, p.z() + 0.1);
+      const Mesh b = convex_hull_mesh(moved);
+      const auto cons = neighbour_constraints({a, b});
+      const bool far = gap > 6;  // the boxes are about gap - 1 apart along y, a's diagonal is about 2.3
+      BOOST_REQUIRE_EQUAL(cons[0].cut_planes.size() + cons[0].face_planes.size(), 1u);
+      if (far) {
+        BOOST_REQUIRE_EQUAL(cons[0].cut_planes.size(), 1u);
+        BOOST_CHECK(cons[0].cut_planes[0].normal == Eigen::Vector3d(0, -1, 0));
+        BOOST_CHECK(cons[1].cut_planes[0].normal == Eigen::Vector3d(0, 1, 0));
+        BOOST_CHECK_EQUAL(cons[0].cut_planes[0].offset, -cons[1].cut_planes[0].offset);
+      } else {
+        BOOST_CHECK(cons[0].face_planes.size() == 1 || cons[0].cut_planes[0].normal != Eigen::Vector3d(0, -1, 0));
+      }
+      for (const Point3& p : mesh_points(a)) BOOST_CHECK(cons[0].satisfied_by(p) && !cons[1].satisfied_by(p));
+      for (const Point3& p : mesh_points(b)) BOOST_CHECK(cons[1].satisfied_by(p) && !cons[0].satisfied_by(p));
+    }
   }
 }
 
