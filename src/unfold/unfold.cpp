@@ -223,7 +223,11 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
     // The other segments of a folded polytope edge meet only as well as the file's rounding
     // keeps its subdivision points on the edge line (pyramid2, 6 decimals: 1e-6 apart); merging
     // them moves a corner by at most 1e-5 of the model size, invisible on paper.
-    double tol = gi >= 0 ? std::max(1e-7 * g.edge_length[i], 1e-5 * g.scale) : 1e-7 * g.edge_length[i];
+    // Not across a nearly flat edge between two facets (their normals part by more than the flat
+    // angle somewhere, so the facet boundary zigzags and its edges are not one line): those
+    // sides miss each other by the facets' tilt times their distance, up to 1e-4 of the size.
+    const bool polytope_edge = gi >= 0 && std::abs(g.edges[i].fold_angle) > g.flat_angle;
+    double tol = polytope_edge ? std::max(1e-7 * g.edge_length[i], 1e-5 * g.scale) : 1e-7 * g.edge_length[i];
     e.fold = (P[e.f0][corner(e.f0, e.v0)] - P[e.f1][corner(e.f1, e.v0)]).norm() <= tol &&
              (P[e.f0][corner(e.f0, e.v1)] - P[e.f1][corner(e.f1, e.v1)]).norm() <= tol;
   }
@@ -492,7 +496,10 @@ namespace {
 Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions* ga, UnfoldStats* stats,
                 std::vector<double>* ga_history) {
   auto t0 = std::chrono::steady_clock::now();
-  ShellGraph g = build_shell_graph(mesh, options.flat_angle);
+  // At the flat angle asked for, a facet's normals stay within 10 flat angles of its first
+  // face's (its chart keeps lengths to ~5e-7 relative); the wider angles below are the last
+  // resort for shells bent slightly everywhere, and merge as before.
+  ShellGraph g = build_shell_graph(mesh, options.flat_angle, 10 * options.flat_angle);
   UnfoldStats st;
   st.faces = static_cast<int>(g.F.size());
   st.facets = g.num_facets;
@@ -516,7 +523,7 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     if (round == 2) break;
     if (flats[i] != flat) {
       flat = flats[i];
-      g = build_shell_graph(mesh, flat);
+      g = build_shell_graph(mesh, flat, 10 * flat);
       sg = make_search_graph(g, flat);
     }
     search = search_heuristics(g, sg, options, round == 1);

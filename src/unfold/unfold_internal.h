@@ -10,6 +10,7 @@
 #include <numeric>
 #include <random>
 #include <string>
+#include <limits>
 #include <vector>
 
 #include "dcshell/kernel.h"
@@ -43,6 +44,7 @@ struct ShellGraph {
   int reflex_edges = 0;
   double max_reflex_angle = 0;
   double scale = 1;  ///< bounding-box diagonal
+  double flat_angle = 0;  ///< the angle the facets were built with
 
   int num_groups() const { return static_cast<int>(group_edges.size()); }
   /// The two facets group gi joins (an edge of the facet graph).
@@ -71,9 +73,15 @@ struct UnionFind {
 
 /// Builds the graph from triangles. Throws InputError (message without file name) when the
 /// triangles are not a closed oriented 2-manifold of genus 0, or a face is degenerate.
+/// Facets grow across edges flat within flat_angle, over faces whose normals lie within
+/// facet_spread of the facet's first face's (needles excepted: their normals are noise). Flat
+/// edges alone chain around a finely sampled curved surface (a cylinder's or a cone's side bends
+/// by less than 1e-4 rad at each edge), and the facet's chart, a projection on one plane, then
+/// shrank its far faces (nets 5e-3 of their size off the shell) and mirrored a sliver.
 ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::array<int, 3>> F,
-                             double flat_angle);
-ShellGraph build_shell_graph(const Mesh& mesh, double flat_angle);
+                             double flat_angle, double facet_spread = std::numeric_limits<double>::infinity());
+ShellGraph build_shell_graph(const Mesh& mesh, double flat_angle,
+                             double facet_spread = std::numeric_limits<double>::infinity());
 
 /// A candidate: per-group fold weights. Kruskal folds groups in increasing weight (ties by
 /// index) after all flat edges, so the groups with the largest weights are the ones cut.

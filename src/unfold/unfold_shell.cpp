@@ -25,7 +25,7 @@ Point3 cgal_point(const Eigen::Vector3d& p) { return Point3(p.x(), p.y(), p.z())
 }  // namespace
 
 ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::array<int, 3>> F,
-                             double flat_angle) {
+                             double flat_angle, double facet_spread) {
   ShellGraph g;
   g.V = std::move(V);
   g.F = std::move(F);
@@ -97,28 +97,57 @@ ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::ar
   long euler = nv - static_cast<long>(g.edges.size()) + nf;
   if (euler != 2) throw InputError("mesh is not a topological sphere (Euler characteristic " + std::to_string(euler) + ")");
 
-  // Facets and groups.
-  UnionFind facets(nf);
-  g.edge_group.assign(g.edges.size(), -1);
+  // Facets and groups (facet_spread: see unfold_internal.h).
   for (int i = 0; i < static_cast<int>(g.edges.size()); ++i) {
     const auto& e = g.edges[i];
     if (e.fold_angle < -flat_angle) {
       ++g.reflex_edges;
       g.max_reflex_angle = std::max(g.max_reflex_angle, -e.fold_angle);
     }
-    if (std::abs(e.fold_angle) <= flat_angle) {
-      g.flat_edges.push_back(i);
-      facets.unite(e.f0, e.f1);
-    }
   }
   g.convex = g.reflex_edges == 0;
-  std::vector<int> facet_id(nf, -1);
-  g.facet.resize(nf);
+  // A needle's normal (its corners within 1e-8 of its size of one line) is rounding noise: such
+  // a face is not tested against the seed, and joins across its flat edges as before.
+  std::vector<Eigen::Vector3d> unit_normal(nf);
+  std::vector<char> reliable(nf, 0);
   for (int f = 0; f < nf; ++f) {
-    int r = facets.find(f);
-    if (facet_id[r] < 0) facet_id[r] = g.num_facets++;
-    g.facet[f] = facet_id[r];
+    const auto& t = g.F[f];
+    const Eigen::Vector3d d1 = g.V[t[1]] - g.V[t[0]], d2 = g.V[t[2]] - g.V[t[0]], c = d1.cross(d2);
+    unit_normal[f] = c.normalized();
+    reliable[f] = c.norm() > 1e-8 * d1.norm() * d2.norm();
   }
+  auto within = [&](int f, int seed) {
+    if (!reliable[f] || !reliable[seed]) return true;
+    const Eigen::Vector3d &a = unit_normal[f], &b = unit_normal[seed];
+    return std::atan2(a.cross(b).norm(), a.dot(b)) <= facet_spread;
+  };
+  g.flat_angle = flat_angle;
+  g.edge_group.assign(g.edges.size(), -1);
+  g.facet.assign(nf, -1);
+  {
+    std::vector<int> queue;
+    for (int seed = 0; seed < nf; ++seed) {
+      if (g.facet[seed] >= 0) continue;
+      const int id = g.num_facets++;
+      g.facet[seed] = id;
+      queue.assign(1, seed);
+      for (std::size_t qi = 0; qi < queue.size(); ++qi)
+        for (int i : g.face_edge[queue[qi]]) {
+          const auto& e = g.edges[i];
+          const int other = e.f0 == queue[qi] ? e.f1 : e.f0;
+          if (g.facet[other] >= 0 || std::abs(e.fold_angle) > flat_angle || !within(other, seed)) continue;
+          g.facet[other] = id;
+          queue.push_back(other);
+        }
+    }
+  }
+  // Flat edges: flat ones inside a facet (a flat edge between two facets is a fold of its own).
+  auto flat_edge = [&](int i) {
+    const auto& e = g.edges[i];
+    return std::abs(e.fold_angle) <= flat_angle && g.facet[e.f0] == g.facet[e.f1];
+  };
+  for (int i = 0; i < static_cast<int>(g.edges.size()); ++i)
+    if (flat_edge(i)) g.flat_edges.push_back(i);
   // Facet charts: mean plane by the area vector, first face's first edge as the u axis.
   {
     std::vector<Eigen::Vector3d> normal(g.num_facets, Eigen::Vector3d::Zero());
@@ -130,9 +159,9 @@ ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::ar
     }
     g.facet_frame.resize(g.num_facets);
     for (int k = 0; k < g.num_facets; ++k) {
-      Eigen::Vector3d n = normal[k].normalized();
       const auto& t = g.F[first[k]];
       Eigen::Vector3d u = g.V[t[1]] - g.V[t[0]];
+      Eigen::Vector3d n = normal[k].normalized();
       u = (u - n * n.dot(u)).normalized();
       g.facet_frame[k] = {g.V[t[0]], u, n.cross(u)};
     }
@@ -147,8 +176,8 @@ ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::ar
   }
   std::map<std::pair<int, int>, int> group_of;
   for (int i = 0; i < static_cast<int>(g.edges.size()); ++i) {
+    if (flat_edge(i)) continue;
     const auto& e = g.edges[i];
-    if (std::abs(e.fold_angle) <= flat_angle) continue;
     int a = g.facet[e.f0], b = g.facet[e.f1];
     auto key = std::make_pair(std::min(a, b), std::max(a, b));
     auto [it, fresh] = group_of.emplace(key, g.num_groups());
@@ -310,7 +339,7 @@ std::vector<Eigen::Vector3d> preferred_directions(const ShellGraph& g) {
   return dirs;
 }
 
-ShellGraph build_shell_graph(const Mesh& mesh, double flat_angle) {
+ShellGraph build_shell_graph(const Mesh& mesh, double flat_angle, double facet_spread) {
   std::vector<Eigen::Vector3d> V;
   std::vector<int> index(mesh.num_vertices() + mesh.number_of_removed_vertices(), -1);
   for (auto v : mesh.vertices()) {
@@ -324,7 +353,7 @@ ShellGraph build_shell_graph(const Mesh& mesh, double flat_angle) {
     for (auto v : CGAL::vertices_around_face(mesh.halfedge(f), mesh)) loop.push_back(index[v.idx()]);
     for (std::size_t i = 1; i + 1 < loop.size(); ++i) F.push_back({loop[0], loop[i], loop[i + 1]});
   }
-  return build_shell_graph(std::move(V), std::move(F), flat_angle);
+  return build_shell_graph(std::move(V), std::move(F), flat_angle, facet_spread);
 }
 
 }  // namespace dcshell::unfold_detail

@@ -2,6 +2,7 @@
 // congruent with one orientation, glued only along shell edges; they fold back to the shell.
 #include <boost/test/unit_test.hpp>
 
+#include <limits>
 #include <map>
 #include <random>
 #include <set>
@@ -315,6 +316,61 @@ BOOST_AUTO_TEST_CASE(ga_is_never_worse_than_its_seeds_and_reproducible) {
         BOOST_TEST(score_of(s1.result, s1.first, obj) <= score_of(s1.first, s1.first, obj) + 1e-9);
       }
     }
+}
+
+BOOST_AUTO_TEST_CASE(facets_stay_flat_on_finely_sampled_curved_sides) {
+  using namespace dcshell::unfold_detail;
+  // The hulls of 2,000 seeded points on a flat elliptic cylinder and on an elliptic cone: their
+  // sides bend by less than the flat angle at many edges, so facets grown across flat edges alone
+  // wrap around them, and a facet's chart (a projection on one plane) shrinks its far faces. With
+  // the bound unfold uses (normals within 10 flat angles of the facet's first face), every face
+  // stays within 20 flat angles of its facet's plane; at flat angle 1e-4 every chart keeps every
+  // side to 1e-6 of the size. Without the bound, faces lie far off their facet's plane.
+  std::mt19937_64 rng(21);
+  auto u = [&](double a, double b) { return a + (b - a) * double(rng() >> 11) * 0x1p-53; };
+  const double inf = std::numeric_limits<double>::infinity();
+  for (int shape = 0; shape < 2; ++shape) {
+    std::vector<Point3> pts;
+    for (int i = 0; i < 2000; ++i) {
+      const double t = u(0, 2 * M_PI), pick = u(0, 3);
+      if (shape == 0) {  // a disc 2 x 0.2 x 0.02: rims and side
+        const double z = pick < 1 ? -1 : pick < 2 ? 1 : u(-1, 1);
+        pts.emplace_back(std::cos(t), 0.1 * std::sin(t), 0.01 * z);
+      } else {  // base 2 x 0.2, height 0.3
+        const double h = u(0, 1);
+        pts.emplace_back((1 - h) * std::cos(t), 0.1 * (1 - h) * std::sin(t), 0.3 * h);
+      }
+    }
+    const Mesh m = convex_hull_mesh(pts);
+    for (double flat : {1e-4, 1e-2}) {
+      for (double spread : {10 * flat, inf}) {
+        BOOST_TEST_CONTEXT("shape " << shape << " flat " << flat << " spread " << spread) {
+          const ShellGraph g = build_shell_graph(m, flat, spread);
+          double off_plane = 0, worst = 0;
+          for (std::size_t f = 0; f < g.F.size(); ++f) {
+            const auto& t = g.F[f];
+            const auto& fr = g.facet_frame[g.facet[f]];
+            const Eigen::Vector3d d1 = g.V[t[1]] - g.V[t[0]], d2 = g.V[t[2]] - g.V[t[0]], n = d1.cross(d2);
+            if (n.norm() > 1e-8 * d1.norm() * d2.norm()) {  // needles' normals are noise
+              const Eigen::Vector3d nf = n.normalized(), np = fr[1].cross(fr[2]);
+              off_plane = std::max(off_plane, std::atan2(nf.cross(np).norm(), nf.dot(np)));
+            }
+            for (int k = 0; k < 3; ++k) {
+              const double l3 = (g.V[t[(k + 1) % 3]] - g.V[t[k]]).norm(), l2 = (g.chart[f][(k + 1) % 3] - g.chart[f][k]).norm();
+              worst = std::max(worst, std::abs(l3 - l2) / g.scale);
+            }
+          }
+          BOOST_TEST_MESSAGE("off plane " << off_plane << " rad, chart error " << worst);
+          if (spread < inf) {
+            BOOST_CHECK_LE(off_plane, 2 * spread);
+            if (flat == 1e-4) BOOST_CHECK_LT(worst, 1e-6);
+          } else if (flat == 1e-2) {
+            BOOST_CHECK_GT(off_plane, 0.3);  // wrapped: a facet bends by more than 15 degrees
+          }
+        }
+      }
+    }
+  }
 }
 
 BOOST_AUTO_TEST_CASE(cut_length_search_reaches_the_minimum_length_cut_tree) {
