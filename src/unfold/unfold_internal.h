@@ -7,10 +7,10 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <numeric>
 #include <random>
 #include <string>
-#include <limits>
 #include <vector>
 
 #include "dcshell/kernel.h"
