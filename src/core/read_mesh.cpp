@@ -302,6 +302,43 @@ void check_binary_ply_sizes(const std::string& path) {
   }
 }
 
+// OFF and binary STL state their counts too, and CGAL's readers only say "failed" when they
+// do not fit: these name the count. An OFF vertex takes at least 6 bytes ("0 0 0\n") and a
+// face at least 8 ("3 0 1 2\n"); a binary STL triangle takes 50 bytes after an 84-byte head.
+void check_off_stl_sizes(const std::string& path, const std::string& ext) {
+  std::ifstream in(path, std::ios::binary);
+  const auto size = static_cast<unsigned long long>(fs::file_size(path));
+  if (ext == ".stl") {
+    char head[84];
+    if (!in.read(head, 84) || std::string(head, 5) == "solid") return;  // too short, or ASCII: CGAL decides
+    unsigned long long n = 0;
+    for (int b = 3; b >= 0; --b) n = (n << 8) | static_cast<unsigned char>(head[80 + b]);
+    if (84 + 50 * n > size)
+      fail(path, 0, "malformed stl file (header declares " + std::to_string(n) + " triangles, more than the file holds)");
+    return;
+  }
+  std::string tok;
+  std::vector<std::string> head;  // the keyword, then vertex, face and edge counts
+  while (head.size() < 4 && in >> tok) {
+    if (tok[0] == '#') {
+      std::string rest;
+      std::getline(in, rest);
+      continue;
+    }
+    head.push_back(tok);
+  }
+  if (head.size() < 3 || head[0].find("OFF") == std::string::npos || tok == "BINARY") return;
+  auto count = [](const std::string& t) -> long long {
+    if (t.empty() || t.size() > 18 || t.find_first_not_of("0123456789") != std::string::npos) return -1;
+    return std::stoll(t);
+  };
+  const long long nv = count(head[1]), nf = count(head[2]);
+  if (nv < 0 || nf < 0) return;  // not plain counts: CGAL decides
+  if (6.0 * double(nv) + 8.0 * double(nf) > double(size))
+    fail(path, 0, "malformed off file (header declares " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+                      " faces, more than the file holds)");
+}
+
 }  // namespace
 
 PolygonSoup read_polygon_soup(const std::string& path) {
@@ -321,6 +358,7 @@ PolygonSoup read_polygon_soup(const std::string& path) {
     std::vector<std::vector<std::size_t>> faces;
     bool ok = false;
     if (ext == ".ply") check_binary_ply_sizes(path);
+    else check_off_stl_sizes(path, ext);
     try {
       ok = CGAL::IO::read_polygon_soup(path, pts, faces, CGAL::parameters::verbose(false));
     } catch (const std::bad_alloc&) {

@@ -192,6 +192,27 @@ BOOST_AUTO_TEST_CASE(ply_counts_are_checked_against_the_file_size) {
   expect_input_error(t.write("a.ply", ascii), "face 0 lists 4000000000 entries");
 }
 
+BOOST_AUTO_TEST_CASE(off_and_stl_counts_are_checked_against_the_file_size) {
+  TempDir t;
+  expect_input_error(t.write("v.off", "OFF\n# big\n99999999999 1 0\n0 0 0\n"),
+                     "declares 99999999999 vertices and 1 faces, more than the file holds");
+  std::string stl = std::string(80, ' ') + std::string("\x00\x00\x00\x10", 4) + std::string(100, '\0');
+  expect_input_error(t.write("t.stl", stl), "declares 268435456 triangles, more than the file holds");
+  // Files that hold what they state still read: a tetrahedron as OFF (with a comment) and as
+  // binary STL (4 triangles of 50 bytes after the 84-byte head).
+  std::vector<std::string> w;
+  const std::string off = "OFF\n# c\n4 4 0\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n";
+  BOOST_CHECK_EQUAL(read_polygon_soup(t.write("ok.off", off)).faces.size(), 4u);
+  std::string bin = std::string(80, ' ') + std::string("\x04\x00\x00\x00", 4);
+  const float tri[4][9] = {{0, 0, 0, 0, 1, 0, 1, 0, 0}, {0, 0, 0, 1, 0, 0, 0, 0, 1}, {0, 0, 0, 0, 0, 1, 0, 1, 0}, {1, 0, 0, 0, 1, 0, 0, 0, 1}};
+  for (const auto& f : tri) {
+    bin += std::string(12, '\0');
+    bin += std::string(reinterpret_cast<const char*>(f), sizeof f);
+    bin += std::string(2, '\0');
+  }
+  BOOST_CHECK_EQUAL(read_polygon_soup(t.write("ok.stl", bin)).faces.size(), 4u);
+}
+
 BOOST_AUTO_TEST_CASE(a_model_too_small_for_doubles_is_refused) {
   TempDir t;
   expect_input_error(t.write("t.obj", "v 0 0 0\nv 1e-170 0 0\nv 0 1e-170 0\nv 0 0 1e-170\nf 1 3 2\nf 1 2 4\nf 1 4 3\nf 2 3 4\n"),
