@@ -159,9 +159,9 @@ ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::ar
     }
     g.facet_frame.resize(g.num_facets);
     for (int k = 0; k < g.num_facets; ++k) {
+      Eigen::Vector3d n = normal[k].normalized();
       const auto& t = g.F[first[k]];
       Eigen::Vector3d u = g.V[t[1]] - g.V[t[0]];
-      Eigen::Vector3d n = normal[k].normalized();
       u = (u - n * n.dot(u)).normalized();
       g.facet_frame[k] = {g.V[t[0]], u, n.cross(u)};
     }
