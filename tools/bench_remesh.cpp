@@ -194,6 +194,14 @@ std::string svg_plot(const std::string& title, const std::vector<double>& ratios
 
 }  // namespace
 
+// The pipeline's constraints for its shells: neighbour planes and the shell's own cuts.
+std::vector<ShellConstraints> pipeline_constraints(const ShellResult& plain, const std::vector<Mesh>& meshes) {
+  std::vector<ShellConstraints> cons = neighbour_constraints(meshes);
+  for (std::size_t k = 0; k < meshes.size(); ++k)
+    for (const auto& c : plain.shells[k].cuts) cons[k].cut_planes.push_back(c.plane);
+  return cons;
+}
+
 int bench_many_boxes(int n, int repeat) {
   std::mt19937_64 rng(42);
   // 400 boxes in a cube of side 20 (half extents 0.3-2): about 2.5 overlapping pairs per box.
@@ -209,9 +217,7 @@ int bench_many_boxes(int n, int repeat) {
   for (int r = 0; r < repeat; ++r) {
     const std::size_t all0 = remesh_detail::all_solves(), exact0 = remesh_detail::exact_solves();
     const auto t0 = std::chrono::steady_clock::now();
-    std::vector<ShellConstraints> cons = neighbour_constraints(meshes);
-    for (std::size_t k = 0; k < meshes.size(); ++k)
-      for (const auto& c : plain.shells[k].cuts) cons[k].cut_planes.push_back(c.plane);
+    const std::vector<ShellConstraints> cons = pipeline_constraints(plain, meshes);
     const auto t1 = std::chrono::steady_clock::now();
     post.assign(meshes.size(), Mesh());
     parallel_for(meshes.size(), [&](std::size_t k) { post[k] = remesh_convex_shell(meshes[k], cons[k], RemeshOptions{}); });
@@ -374,10 +380,7 @@ int main(int argc, char** argv) {
       b0.print(dir.filename().string(), "plain");
       b1.print(dir.filename().string(), "paper");
     }
-    // The pipeline's constraints for its shells: neighbour planes and the shell's own cuts.
-    std::vector<ShellConstraints> cons = neighbour_constraints(meshes);
-    for (std::size_t k = 0; k < meshes.size(); ++k)
-      for (const auto& c : plain.shells[k].cuts) cons[k].cut_planes.push_back(c.plane);
+    const std::vector<ShellConstraints> cons = pipeline_constraints(plain, meshes);
     std::vector<double> times;
     std::vector<Mesh> post;
     const std::size_t all0 = remesh_detail::all_solves(), exact0 = remesh_detail::exact_solves();

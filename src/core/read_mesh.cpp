@@ -327,7 +327,9 @@ void check_off_stl_sizes(const std::string& path, const std::string& ext) {
     }
     head.push_back(tok);
   }
-  if (head.size() < 3 || head[0].find("OFF") == std::string::npos || tok == "BINARY") return;
+  // [ST][C][N]OFF only: nOFF and 4OFF put a dimension first, OFF BINARY has no text counts.
+  if (head.size() < 3 || head[0].find("OFF") == std::string::npos || head[0].find_first_of("n4") != std::string::npos)
+    return;
   auto count = [](const std::string& t) -> long long {
     if (t.empty() || t.size() > 18 || t.find_first_not_of("0123456789") != std::string::npos) return -1;
     return std::stoll(t);

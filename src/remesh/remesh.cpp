@@ -2,8 +2,6 @@
 // constraints a set of existing shells imposes on each other (see dcshell/remesh.h).
 #include "dcshell/remesh.h"
 
-#include <CGAL/Exact_rational.h>
-
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -216,20 +214,10 @@ Separator best_face_separator(const Mesh& owner, const std::vector<Point3>& othe
   return best;
 }
 
-// n·x <= d for every point, exactly (sign = +1), or >= d (sign = -1).
+// n·x <= d for every point, exactly.
 bool all_on_side(const std::vector<Point3>& pts, const CutPlane& p) {
-  for (const Point3& x : pts) {
-    // Floating point first: the sum of four terms is off by at most 4.5 units of rounding of
-    // their magnitudes (1e-15 is twice that); only values within it are decided exactly.
-    const double t[4] = {p.normal.x() * x.x(), p.normal.y() * x.y(), p.normal.z() * x.z(), -p.offset};
-    const double e = t[0] + t[1] + t[2] + t[3];
-    const double bound = 1e-15 * (std::abs(t[0]) + std::abs(t[1]) + std::abs(t[2]) + std::abs(t[3]));
-    if (e < -bound) continue;
-    if (e > bound) return false;
-    using Q = CGAL::Exact_rational;
-    const Q q = Q(p.normal.x()) * Q(x.x()) + Q(p.normal.y()) * Q(x.y()) + Q(p.normal.z()) * Q(x.z()) - Q(p.offset);
-    if (q > 0) return false;
-  }
+  for (const Point3& x : pts)
+    if (!on_or_below(p, x)) return false;
   return true;
 }
 
@@ -240,7 +228,7 @@ bool all_on_side(const std::vector<Point3>& pts, const CutPlane& p) {
 // other (a set of hundreds of shells has mostly such pairs).
 std::optional<CutPlane> far_apart_plane(const CGAL::Bbox_3& a, const CGAL::Bbox_3& b) {
   auto diag = [](const CGAL::Bbox_3& x) {
-    return std::sqrt(CGAL::square(x.xmax() - x.xmin()) + CGAL::square(x.ymax() - x.ymin()) + CGAL::square(x.zmax() - x.zmin()));
+    return std::hypot(x.xmax() - x.xmin(), x.ymax() - x.ymin(), x.zmax() - x.zmin());
   };
   const double need = 2 * std::max(diag(a), diag(b));
   for (int k = 0; k < 3; ++k) {

@@ -101,14 +101,15 @@ std::pair<std::size_t, double> most_violated(const std::vector<Row>& rows, const
 // three independent normals keep W pointed, so the vertex arguments below still hold; the
 // objective never decreases, so dropping rows only costs steps (bounded: past the cap the exact
 // solver decides), and a step costs a constant instead of |W|^3.
-// `used` collects the indices of the rows W took in (the exact fallback starts from them).
+// `used` collects the indices of the rows W took in, in order (the Farkas test below, and the
+// exact fallback starts from them).
 template <class Certify>
 std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vector<Row> w, Eigen::Vector3d y,
                                         bool with_singles_and_pairs, const Eigen::Vector3d& t, Certify certified,
                                         bool& undecided, std::vector<std::size_t>& used) {
   undecided = false;
   const bool prune = !with_singles_and_pairs;
-  std::vector<Row> seen = w;  // every row W ever held (the Farkas test below)
+  const std::vector<Row> start = w;  // with rows[used]: every row W ever held
   const std::size_t max_iter = prune ? 4 * rows.size() + 16 : rows.size();
   for (std::size_t iter = 0; iter <= max_iter; ++iter) {
     const auto [p, viol] = most_violated(rows, y);
@@ -117,10 +118,12 @@ std::optional<Eigen::Vector3d> generate(const std::vector<Row>& rows, std::vecto
     // |y| <= kBox when b_i + b_p + kBox |a_i + a_p|_1 < 0 (their sum is <= that bound there).
     // Catches the thin slabs of nearly flat neighbourhoods, whose vertices are too
     // ill-conditioned to enumerate; a solution beyond kBox would be useless to the caller.
-    for (const Row& r : seen)
-      if (r.b + rows[p].b + kBox * (r.a + rows[p].a).lpNorm<1>() < -kFeasTol) return std::nullopt;
+    auto opposite = [&](const Row& r) { return r.b + rows[p].b + kBox * (r.a + rows[p].a).lpNorm<1>() < -kFeasTol; };
+    for (const Row& r : start)
+      if (opposite(r)) return std::nullopt;
+    for (std::size_t i : used)
+      if (opposite(rows[i])) return std::nullopt;
     w.push_back(rows[p]);
-    seen.push_back(rows[p]);
     used.push_back(p);
     const std::size_t m = w.size(), q = m - 1;
     bool found = false;

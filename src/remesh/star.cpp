@@ -272,18 +272,24 @@ double mesh_volume(const Mesh& m) {
 
 namespace dcshell {
 
-bool ShellConstraints::satisfied_by(const Point3& x) const {
+namespace remesh_detail {
+
+bool on_or_below(const CutPlane& p, const Point3& x) {
+  // Floating-point filter: the error of n·x - d is below this bound, so the sign is certain.
+  const double v = p.eval(vec(x));
+  const double bound = 1e-14 * (std::abs(p.normal.x() * x.x()) + std::abs(p.normal.y() * x.y()) +
+                                std::abs(p.normal.z() * x.z()) + std::abs(p.offset));
+  if (v < -bound) return true;
+  if (v > bound) return false;
   using Q = CGAL::Exact_rational;
-  for (const CutPlane& p : cut_planes) {
-    // Floating-point filter: the error of n·x - d is below this bound, so the sign is certain.
-    const double v = p.eval(remesh_detail::vec(x));
-    const double bound = 1e-14 * (std::abs(p.normal.x() * x.x()) + std::abs(p.normal.y() * x.y()) +
-                                  std::abs(p.normal.z() * x.z()) + std::abs(p.offset));
-    if (v < -bound) continue;
-    if (v > bound) return false;
-    const Q e = Q(p.normal.x()) * Q(x.x()) + Q(p.normal.y()) * Q(x.y()) + Q(p.normal.z()) * Q(x.z()) - Q(p.offset);
-    if (e > 0) return false;
-  }
+  return Q(p.normal.x()) * Q(x.x()) + Q(p.normal.y()) * Q(x.y()) + Q(p.normal.z()) * Q(x.z()) - Q(p.offset) <= 0;
+}
+
+}  // namespace remesh_detail
+
+bool ShellConstraints::satisfied_by(const Point3& x) const {
+  for (const CutPlane& p : cut_planes)
+    if (!remesh_detail::on_or_below(p, x)) return false;
   for (const auto& t : face_planes)
     if (CGAL::orientation(t[0], t[1], t[2], x) == CGAL::POSITIVE) return false;
   for (const auto& h : exact_planes)

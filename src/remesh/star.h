@@ -47,6 +47,9 @@ struct Frame {
   Eigen::Vector3d to_world(const Eigen::Vector3d& y) const { return origin + scale * y; }
 };
 
+/// Exact: normal·x <= offset (a floating-point filter, rationals only near the plane).
+bool on_or_below(const CutPlane& p, const Point3& x);
+
 /// Rows a·y <= b keeping the new point y (local) on the inner side of every constraint plane,
 /// with a margin of `margin` (in local units).
 void add_constraint_rows(const ShellConstraints& c, const Frame& f, double margin, std::vector<Row>& rows);

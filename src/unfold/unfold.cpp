@@ -223,11 +223,7 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
     // The other segments of a folded polytope edge meet only as well as the file's rounding
     // keeps its subdivision points on the edge line (pyramid2, 6 decimals: 1e-6 apart); merging
     // them moves a corner by at most 1e-5 of the model size, invisible on paper.
-    // Not across a nearly flat edge between two facets (their normals part by more than the flat
-    // angle somewhere, so the facet boundary zigzags and its edges are not one line): those
-    // sides miss each other by the facets' tilt times their distance, up to 1e-4 of the size.
-    const bool polytope_edge = gi >= 0 && std::abs(g.edges[i].fold_angle) > g.flat_angle;
-    double tol = polytope_edge ? std::max(1e-7 * g.edge_length[i], 1e-5 * g.scale) : 1e-7 * g.edge_length[i];
+    double tol = gi >= 0 ? std::max(1e-7 * g.edge_length[i], 1e-5 * g.scale) : 1e-7 * g.edge_length[i];
     e.fold = (P[e.f0][corner(e.f0, e.v0)] - P[e.f1][corner(e.f1, e.v0)]).norm() <= tol &&
              (P[e.f0][corner(e.f0, e.v1)] - P[e.f1][corner(e.f1, e.v1)]).norm() <= tol;
   }

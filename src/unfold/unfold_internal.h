@@ -44,7 +44,6 @@ struct ShellGraph {
   int reflex_edges = 0;
   double max_reflex_angle = 0;
   double scale = 1;  ///< bounding-box diagonal
-  double flat_angle = 0;  ///< the angle the facets were built with
 
   int num_groups() const { return static_cast<int>(group_edges.size()); }
   /// The two facets group gi joins (an edge of the facet graph).

@@ -121,7 +121,6 @@ ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::ar
     const Eigen::Vector3d &a = unit_normal[f], &b = unit_normal[seed];
     return std::atan2(a.cross(b).norm(), a.dot(b)) <= facet_spread;
   };
-  g.flat_angle = flat_angle;
   g.edge_group.assign(g.edges.size(), -1);
   g.facet.assign(nf, -1);
   {
