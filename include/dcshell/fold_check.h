@@ -39,6 +39,12 @@ struct FoldCheckOptions {
   /// Work budget in piece placements (each step places every rigid piece once: steps x pieces);
   /// 0 = none. A count, not a time: the same nets pass or run out on every machine.
   long long max_work = 0;
+  /// With max_work: the candidate pairs the steps examine, summed over the steps, are bounded
+  /// too, by pairs_per_work x max_work (0: not bounded); past that the check stops undecided
+  /// (out_of_budget). On a net of thousands of one-triangle pieces whose travel boxes all meet
+  /// (a 2,000-point sphere hull: 200,000 pairs a step) the pairs are what costs, not the
+  /// placements. The unfolder bounds its candidates' checks so (25).
+  double pairs_per_work = 0;
   /// Contact tolerance relative to the net size (diagonal of its bounding box): closer than this
   /// counts as a collision; it also absorbs floating-point rounding of the folded coordinates.
   double tolerance = 1e-9;
@@ -82,6 +88,10 @@ struct FoldCheckResult {
   std::string message;        ///< why not verified; empty when verified
   int pieces = 0;             ///< rigid pieces (faces joined by flat folds)
   int pairs = 0;              ///< pairs of pieces examined (candidates at some step; with end_first, the end's too)
+  long long pair_tests = 0;   ///< candidate pairs summed over all steps (with end_first, the end's too)
+  /// The budget this check used: steps x pieces (both passes with end_first) or
+  /// pair_tests / pairs_per_work, whichever is more.
+  long long work = 0;
   /// Not verified, and no check of this net can verify it, whatever its start (t_begin) and
   /// steps: the two faces cross at t by more than 1e-7 x net size, or their pieces touch in the
   /// folded shell where no end window can prove the approach. Otherwise a failure may be the

@@ -364,6 +364,15 @@ class Checker {
   Motion m_;
   std::vector<Piece> pc_;
   double scale_ = 0, tol_ = 0;
+  // Candidate pairs over all steps, and their bound (FoldCheckOptions::pairs_per_work).
+  long long pair_tests_ = 0;
+  double pair_cap_ = 0;
+  void account(FoldCheckResult& r, long long steps) const {
+    r.pair_tests = pair_tests_;
+    r.work = steps * std::max(r.pieces, 1);
+    if (opt_.pairs_per_work > 0)
+      r.work = std::max(r.work, static_cast<long long>(static_cast<double>(pair_tests_) / opt_.pairs_per_work));
+  }
   // Pairs examined so far (stable addresses), found through a dense p x q table while there are
   // at most kDensePieces pieces, else through per-piece sorted rows (pair_slots.h).
   static constexpr int kDensePieces = 2048;
@@ -1042,6 +1051,7 @@ FoldCheckResult Checker::run() {
     res.verified = true;
     return res;
   }
+  pair_cap_ = opt_.max_work > 0 && opt_.pairs_per_work > 0 ? opt_.pairs_per_work * static_cast<double>(opt_.max_work) : kInf;
   lever_off_.assign(nb + 1, 0);
   for (int b = 0; b < nb; ++b) lever_off_[b + 1] = lever_off_[b] + pc_[b].depth;
   lever_.assign(lever_off_[nb], 0.0);
@@ -1051,6 +1061,7 @@ FoldCheckResult Checker::run() {
     // The end first: most straight-line folds that fail do so there, and the pairs' set-up
     // (classes, end windows) is path-independent, so the pass from begin reuses it.
     FoldCheckResult end = step_path(1 - opt_.end_first, true);
+    account(end, end.steps);
     if (!end.verified && end.conclusive) {
       end.refuted_at_end = true;
       return end;
@@ -1064,6 +1075,7 @@ FoldCheckResult Checker::run() {
   }
   res = step_path(begin, false);
   res.end_first_steps = end_steps;
+  account(res, res.steps + end_steps);
   return res;
 }
 
@@ -1091,6 +1103,7 @@ FoldCheckResult Checker::step_path(double t0, bool screening) {
   // Steps allowed: max_steps, and max_work / pieces when a work budget is given.
   const long long step_cap =
       opt_.max_work > 0 ? std::min<long long>(opt_.max_steps, std::max<long long>(1, opt_.max_work / nb)) : opt_.max_steps;
+  bool out_of_pairs = false;  // stopped by the pair bound (FoldCheckOptions::pairs_per_work)
   // Plane advancement, either piece's plane; at t = 0 only when the flat faces do not overlap.
   double t = t0, dt = 1.0 / 16;
   auto advance = [&](int p, int q, PairInfo& pi) {
@@ -1140,6 +1153,11 @@ FoldCheckResult Checker::step_path(double t0, bool screening) {
         for (int d = 0; d < 3; ++d) lo[d] = std::min(lo[d], v[d] - r), hi[d] = std::max(hi[d], v[d] + r);
     }
     sweep_.pairs(box_lo, box_hi, cand);  // sorted: deterministic
+    pair_tests_ += static_cast<long long>(cand.size());
+    if (static_cast<double>(pair_tests_) > pair_cap_) {
+      out_of_pairs = true;
+      break;
+    }
     double step = dt;
     int limit_p = -1, limit_q = -1;  // the pair that limits the step (reported at the step limit)
     for (auto [p, q] : cand) {
@@ -1238,7 +1256,7 @@ FoldCheckResult Checker::step_path(double t0, bool screening) {
   }
   res.t = t;
   res.out_of_budget = true;
-  res.message = "step limit reached at t = " + std::to_string(t);
+  res.message = (out_of_pairs ? "pair limit reached at t = " : "step limit reached at t = ") + std::to_string(t);
   if (last_p >= 0) {
     res.face_a = pc_[last_p].faces.front(), res.face_b = pc_[last_q].faces.front();
     res.message += " (steps limited by faces " + std::to_string(res.face_a) + " and " + std::to_string(res.face_b) + ")";

@@ -456,6 +456,37 @@ BOOST_AUTO_TEST_CASE(fold_check_past_its_piece_limit_is_undecided_not_verified) 
   BOOST_TEST(check_folding(net, limited).verified == check_folding(net).verified);
 }
 
+BOOST_AUTO_TEST_CASE(fold_check_pair_bound_stops_undecided_and_counts_in_the_work) {
+  // The icosahedron's net: unbounded, the check verifies with P candidate pairs over its steps
+  // and uses steps x pieces of budget. With the pairs bounded below P it stops undecided at the
+  // step that passes the bound; bounded above P it gives the same verdict and steps as before.
+  UnfoldOptions o;
+  o.fold_candidates = 0;
+  const Net net = unfold_convex_mesh(icosahedron(), o);
+  FoldCheckOptions free_run;
+  free_run.max_work = 1000000;  // far more steps than the check takes
+  const auto a = check_folding(net, free_run);
+  BOOST_TEST_REQUIRE(a.verified, a.message);
+  BOOST_TEST_REQUIRE(a.pair_tests > 10);
+  BOOST_TEST(a.work == static_cast<long long>(a.steps) * a.pieces);
+  FoldCheckOptions low = free_run;
+  low.pairs_per_work = static_cast<double>(a.pair_tests / 2) / static_cast<double>(low.max_work);
+  const auto b = check_folding(net, low);
+  BOOST_TEST(!b.verified);
+  BOOST_TEST(b.out_of_budget);
+  BOOST_TEST(b.t < 1.0);
+  BOOST_TEST(b.message.find("pair limit") != std::string::npos, b.message);
+  BOOST_TEST(b.pair_tests > a.pair_tests / 2);
+  BOOST_TEST(b.pair_tests < a.pair_tests);
+  BOOST_TEST(b.work >= static_cast<long long>(static_cast<double>(b.pair_tests) / low.pairs_per_work) - 1);
+  FoldCheckOptions high = free_run;
+  high.pairs_per_work = static_cast<double>(2 * a.pair_tests) / static_cast<double>(high.max_work);
+  const auto c = check_folding(net, high);
+  BOOST_TEST(c.verified);
+  BOOST_TEST(c.steps == a.steps);
+  BOOST_TEST(c.pair_tests == a.pair_tests);
+}
+
 BOOST_AUTO_TEST_CASE(fold_check_collision_found_on_a_shared_model_is_real) {
   // ellip's smallest random net (the default's choice before the greedy trees joined it)
   // collides mid-way (faces 3 and 4 near t = 0.5515, found by sampling); the check must not
