@@ -45,6 +45,11 @@ struct FoldCheckOptions {
   /// (a 2,000-point sphere hull: 200,000 pairs a step) the pairs are what costs, not the
   /// placements. The unfolder bounds its candidates' checks so (25).
   double pairs_per_work = 0;
+  /// Corners tested against separating planes (plane advancement and end windows) per unit of
+  /// FoldCheckResult::work (0: not counted). Counted, not bounded: a check that needs them
+  /// keeps its verdict, but a caller's budget pays for them (pieces with hundreds of corners at
+  /// contact cost hundreds of millions in one step).
+  double corners_per_work = 0;
   /// Contact tolerance relative to the net size (diagonal of its bounding box): closer than this
   /// counts as a collision; it also absorbs floating-point rounding of the folded coordinates.
   double tolerance = 1e-9;
@@ -89,8 +94,9 @@ struct FoldCheckResult {
   int pieces = 0;             ///< rigid pieces (faces joined by flat folds)
   int pairs = 0;              ///< pairs of pieces examined (candidates at some step; with end_first, the end's too)
   long long pair_tests = 0;   ///< candidate pairs summed over all steps (with end_first, the end's too)
-  /// The budget this check used: steps x pieces (both passes with end_first) or
-  /// pair_tests / pairs_per_work, whichever is more.
+  long long corner_tests = 0; ///< corners tested against separating planes (likewise)
+  /// The budget this check used: steps x pieces (both passes with end_first), pair_tests /
+  /// pairs_per_work or corner_tests / corners_per_work, whichever is most.
   long long work = 0;
   /// Not verified, and no check of this net can verify it, whatever its start (t_begin) and
   /// steps: the two faces cross at t by more than 1e-7 x net size, or their pieces touch in the

@@ -364,14 +364,17 @@ class Checker {
   Motion m_;
   std::vector<Piece> pc_;
   double scale_ = 0, tol_ = 0;
-  // Candidate pairs over all steps, and their bound (FoldCheckOptions::pairs_per_work).
-  long long pair_tests_ = 0;
+  // Candidate pairs over all steps, and their bound (FoldCheckOptions::pairs_per_work); corners
+  // tested against planes by plane_advance and plane_window (corners_per_work).
+  long long pair_tests_ = 0, corner_tests_ = 0;
   double pair_cap_ = 0;
   void account(FoldCheckResult& r, long long steps) const {
-    r.pair_tests = pair_tests_;
+    r.pair_tests = pair_tests_, r.corner_tests = corner_tests_;
     r.work = steps * std::max(r.pieces, 1);
     if (opt_.pairs_per_work > 0)
       r.work = std::max(r.work, static_cast<long long>(static_cast<double>(pair_tests_) / opt_.pairs_per_work));
+    if (opt_.corners_per_work > 0)
+      r.work = std::max(r.work, static_cast<long long>(static_cast<double>(corner_tests_) / opt_.corners_per_work));
   }
   // Pairs examined so far (stable addresses), found through a dense p x q table while there are
   // at most kDensePieces pieces, else through per-piece sorted rows (pair_slots.h).
@@ -833,9 +836,11 @@ double Checker::plane_advance(int p, int q, const PairInfo& pi) {
     double c = -kInf;
     for (const auto& y : xp) c = std::max(c, m.dot(y));
     for (int i = 0; i < mq; ++i) hm[i] = m.dot(xq[i]) - c, dm[i] = m.dot(vel[i]);
+    corner_tests_ += mp + mq;
     for (int k = 0; k <= 16 && best < 0.5 / S; ++k) {
       const double sn = kTilt[k][1], cs = kTilt[k][0];
       double window = 0.5 / S;
+      corner_tests_ += mq;
       for (int i = 0; i < mq && window > best; ++i) {
         if (fixed[i]) continue;
         const double h = cs * hz[i] + sn * hm[i], dh = cs * dz[i] + sn * dm[i], M = 4 * S * L[i];
@@ -961,7 +966,9 @@ double Checker::plane_window(int p, int q, const PairInfo& pi) {
         L[i] += std::abs(pc_[b].angle) * (w - w.dot(au[b]) * au[b]).norm();
       }
   }
+  corner_tests_ += static_cast<long long>(mq) * (up_p.size() + up_q.size());  // the velocities
   auto window_for = [&](const Vec3& n, const Vec3& c) {
+    corner_tests_ += mp + mq;
     for (int i = 0; i < mp; ++i)
       if (n.dot(xp[i] - c) > tol_) return 0.0;
     double window = 1;

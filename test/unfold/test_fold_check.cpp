@@ -460,6 +460,7 @@ BOOST_AUTO_TEST_CASE(fold_check_pair_bound_stops_undecided_and_counts_in_the_wor
   // The icosahedron's net: unbounded, the check verifies with P candidate pairs over its steps
   // and uses steps x pieces of budget. With the pairs bounded below P it stops undecided at the
   // step that passes the bound; bounded above P it gives the same verdict and steps as before.
+  // Corners tested against planes only add to the work.
   UnfoldOptions o;
   o.fold_candidates = 0;
   const Net net = unfold_convex_mesh(icosahedron(), o);
@@ -485,6 +486,15 @@ BOOST_AUTO_TEST_CASE(fold_check_pair_bound_stops_undecided_and_counts_in_the_wor
   BOOST_TEST(c.verified);
   BOOST_TEST(c.steps == a.steps);
   BOOST_TEST(c.pair_tests == a.pair_tests);
+  // Corners tested against planes are counted in the work, never bounded: the same verdict.
+  BOOST_TEST_REQUIRE(a.corner_tests > a.work);
+  FoldCheckOptions counted = free_run;
+  counted.corners_per_work = 1;
+  const auto d = check_folding(net, counted);
+  BOOST_TEST(d.verified);
+  BOOST_TEST(d.steps == a.steps);
+  BOOST_TEST(d.corner_tests == a.corner_tests);
+  BOOST_TEST(d.work == d.corner_tests);
 }
 
 BOOST_AUTO_TEST_CASE(fold_check_collision_found_on_a_shared_model_is_real) {
