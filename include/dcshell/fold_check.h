@@ -125,7 +125,9 @@ int rigid_pieces(const Net& net);
 /// clear of its plane and its sides by more than `margin` x net size (a sure collision: rounding
 /// is far below that). Returns that state as a not-verified result (steps = states sampled);
 /// nothing when no sampled state collides, which proves nothing about the states in between.
-std::optional<FoldCheckResult> find_sampled_collision(const Net& net, int samples = 32, double margin = 1e-7);
+/// `pair_tests`, when given, receives the face pairs whose boxes met, summed over the states.
+std::optional<FoldCheckResult> find_sampled_collision(const Net& net, int samples = 32, double margin = 1e-7,
+                                                      long long* pair_tests = nullptr);
 
 /// Net faces moved to folding state t (0 = flat net at z = 0, 1 = folded shell, in net
 /// coordinates): corners of each face, in shell order.

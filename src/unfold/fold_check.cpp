@@ -1285,7 +1285,10 @@ std::vector<std::array<Eigen::Vector3d, 3>> folded_faces(const Net& net, double 
 
 int rigid_pieces(const Net& net) { return static_cast<int>(Motion(net).body_root.size()); }
 
-std::optional<FoldCheckResult> find_sampled_collision(const Net& net, int samples, double margin) {
+std::optional<FoldCheckResult> find_sampled_collision(const Net& net, int samples, double margin, long long* pair_tests) {
+  long long pairs_dummy = 0;
+  long long& pairs = pair_tests ? *pair_tests : pairs_dummy;
+  pairs = 0;
   Motion m(net);
   if (m.nf == 0 || samples < 2) return std::nullopt;
   Eigen::AlignedBox2d box;
@@ -1317,6 +1320,7 @@ std::optional<FoldCheckResult> find_sampled_collision(const Net& net, int sample
         }
       }
     sweep.pairs(lo, hi, cand);
+    pairs += static_cast<long long>(cand.size());
     for (const auto& [f, g] : cand) {
       if (m.body[f] == m.body[g]) continue;
       if (!edge_pierces(x[f], x[g], mg) && !edge_pierces(x[g], x[f], mg)) continue;

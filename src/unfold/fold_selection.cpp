@@ -65,6 +65,9 @@ bool FoldSelection::run(int checks) {
   return have_;
 }
 
+// Pairs examined per unit of budget, in a check (FoldCheckOptions::pairs_per_work, a bound) and in
+// a probe (a cost).
+constexpr double kPairsPerWork = 25;
 // Corners tested against planes per unit of budget (FoldCheckOptions::corners_per_work). The
 // shared sets' checks test up to 240 per unit of their own budget; the candidates of a hull of
 // 600 random points on a cylinder up to 3,700, 0.35 s each: its shell took 10.4 s, now 2.2 s.
@@ -84,8 +87,12 @@ bool FoldSelection::check(const Genome& genome, const std::string& heuristic, lo
   // conclusive failure refutes the net.
   std::optional<FoldCheckResult> hit;
   if (first_pass && faces <= 4LL * rigid_pieces(candidate)) {  // a deferred net was probed on its first pass
-    hit = find_sampled_collision(candidate, kProbeStates);
-    work_ -= (hit ? hit->steps : kProbeStates - 1) * faces;
+    long long probe_pairs = 0;
+    hit = find_sampled_collision(candidate, kProbeStates, 1e-7, &probe_pairs);
+    // Needle faces (hulls of points on a cone) make boxes that meet by the thousand: 144 pairs
+    // per face and state on a 600-point cone, against at most 11 on the shared sets.
+    work_ -= std::max<long long>((hit ? hit->steps : kProbeStates - 1) * faces,
+                                 static_cast<long long>(static_cast<double>(probe_pairs) / kPairsPerWork));
   }
   FoldCheckResult fc;
   if (hit) {
@@ -95,7 +102,7 @@ bool FoldSelection::check(const Genome& genome, const std::string& heuristic, lo
     fo.max_work = std::max<long long>(budget, 1);
     // The candidates' checks on the shared sets examine up to 18 pairs per unit of budget; a
     // 2,000-point sphere hull's 55 (1.7 s a check, all undecided).
-    fo.pairs_per_work = 25;
+    fo.pairs_per_work = kPairsPerWork;
     fo.corners_per_work = kCornersPerWork;
     // A deferred net was screened on its first pass; one whose end the screen could not prove is
     // set aside, not checked from t = 0 (it nearly never verifies from there).

@@ -327,6 +327,27 @@ BOOST_AUTO_TEST_CASE(sampled_collision_finds_crossing_flaps_and_never_a_free_fol
   }
 }
 
+BOOST_AUTO_TEST_CASE(sampled_collision_counts_the_face_pairs_whose_boxes_meet) {
+  // The unfolder charges a probe by these pairs: they are every pair of faces whose closed
+  // bounding boxes meet, summed over the states t = 1 - (k / samples)^2, k = 1 .. samples - 1.
+  const Net net = unfold_convex_mesh(icosahedron());
+  const int samples = 8;
+  long long pairs = -1;
+  BOOST_TEST_REQUIRE(!find_sampled_collision(net, samples, 1e-7, &pairs));
+  long long expected = 0;
+  for (int k = 1; k < samples; ++k) {
+    const double s = static_cast<double>(k) / samples;
+    const auto x = folded_faces(net, 1 - s * s);
+    std::vector<Eigen::AlignedBox3d> box(x.size());
+    for (std::size_t f = 0; f < x.size(); ++f)
+      for (const auto& c : x[f]) box[f].extend(c);
+    for (std::size_t f = 0; f < x.size(); ++f)
+      for (std::size_t g = f + 1; g < x.size(); ++g) expected += box[f].intersects(box[g]);
+  }
+  BOOST_TEST(expected > 0);
+  BOOST_TEST(pairs == expected);
+}
+
 BOOST_AUTO_TEST_CASE(sampled_collision_agrees_with_the_check_on_random_nets) {
   // Random cut trees of ellipsoid hulls: wherever a sampled state collides, the check does not
   // verify the net and stops at or before that state, and the two faces reported really cross
