@@ -43,6 +43,11 @@ struct AssemblyJoin {
 void write_net_sheets(const std::vector<Net>& nets, const SheetOptions&,
                       const std::vector<AssemblyJoin>& assembly, std::ostream& out);
 
+/// Why `net` cannot be printed (a face mirrored or of no area in the plane, an edge that is not
+/// its faces', a corner that is not finite, ...), or empty when it can. write_net_sheets throws on
+/// such a net; a caller with several nets can leave it off instead.
+std::string net_sheet_problem(const Net& net);
+
 /// Where one piece went. Page coordinates are mm from the paper's top-left corner, y down.
 struct SheetPlacement {
   std::size_t net = 0;  ///< index into the nets given

@@ -34,6 +34,7 @@ struct ShellResult {
   Net net;
   UnfoldStats stats;
   FoldCheckResult fold;
+  std::string sheet_problem;  ///< why the net is left off the sheets; empty when it is on them
   double seconds = 0;
 };
 
@@ -265,6 +266,11 @@ int run_unfold(int argc, char** argv) {
       s.net.name = name;
       s.net_file = numbered("net_", index[k], ".obj");
       dir.write(s.net_file, [&](std::ostream& os) { write_net_obj(s.net, os); });
+      // One net the sheets cannot print (a face mirrored in the plane) does not cost the others
+      // their pages: it is left off, reported, and the run is not ok.
+      s.sheet_problem = net_sheet_problem(s.net);
+      if (!s.sheet_problem.empty())
+        std::cerr << "dcshell unfold: " << files[k] << ": left off the sheets: " << s.sheet_problem << "\n";
       if (quiet) continue;
       if (!s.stats.convex)
         std::cerr << "dcshell unfold: warning: " << files[k] << " is not convex (" << s.stats.reflex_edges
@@ -276,22 +282,25 @@ int run_unfold(int argc, char** argv) {
     }
 
     std::vector<Net> nets;
-    for (auto& s : shells) nets.push_back(s.net);
+    for (auto& s : shells)
+      if (s.sheet_problem.empty()) nets.push_back(s.net);
     std::string sheet_file = so.format == SheetOptions::Format::pdf ? "nets.pdf" : "nets.svg";
     try {
-      dir.write(sheet_file, [&](std::ostream& os) { write_net_sheets(nets, so, {}, os); });
+      if (!nets.empty()) dir.write(sheet_file, [&](std::ostream& os) { write_net_sheets(nets, so, {}, os); });
     } catch (const std::invalid_argument& e) {
       throw InputError(e.what());
     }
 
     bool all_good = true;
-    for (auto& s : shells) all_good &= s.stats.result.overlapping_pairs == 0 && s.fold.verified;
+    for (auto& s : shells)
+      all_good &= s.stats.result.overlapping_pairs == 0 && s.fold.verified && s.sheet_problem.empty();
     dir.write("unfold.json", [&](std::ostream& os) {
       JsonWriter json(os);
       json.begin_object();
       json.field("tool", "dcshell unfold");
       json.field("heuristic", heuristic).field("objective", objective).field("seed", static_cast<std::int64_t>(seed));
-      json.field("sheets", sheet_file);
+      if (nets.empty()) json.key("sheets").null();  // no net could be printed
+      else json.field("sheets", sheet_file);
       json.key("shells").begin_array();
       for (std::size_t k = 0; k < shells.size(); ++k) {
         const auto& s = shells[k];
@@ -305,6 +314,8 @@ int run_unfold(int argc, char** argv) {
             .field("overlapping_pairs", s.stats.result.overlapping_pairs);
         json.field("fold_path_verified", s.fold.verified).field("fold_check_steps", s.fold.steps);
         json.field("fold_fallback", s.stats.fold_fallback);
+        json.field("on_sheets", s.sheet_problem.empty());
+        if (!s.sheet_problem.empty()) json.field("sheet_problem", s.sheet_problem);
         if (!s.fold.verified) json.field("fold_check_t", s.fold.t).field("fold_check_problem", s.fold.message);
         json.key("first_net").begin_object();
         json.field("cut_length", s.stats.first.cut_length).field("hull_area", s.stats.first.hull_area);

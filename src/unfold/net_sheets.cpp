@@ -160,9 +160,14 @@ struct PieceModel {
   double diameter = 0;
 };
 
-[[noreturn]] void bad_net(const PieceModel& m, const std::string& what) {
-  throw std::invalid_argument("sheets: net " + std::to_string(m.index) + " ('" + m.name + "'): " + what);
-}
+// An inconsistent net; `reason` without the net's name (net_sheet_problem).
+struct BadNet : std::invalid_argument {
+  std::string reason;
+  BadNet(const PieceModel& m, const std::string& what)
+      : std::invalid_argument("sheets: net " + std::to_string(m.index) + " ('" + m.name + "'): " + what), reason(what) {}
+};
+
+[[noreturn]] void bad_net(const PieceModel& m, const std::string& what) { throw BadNet(m, what); }
 
 int find_directed(const Net& net, int f, int from, int to) {
   for (int k = 0; k < 3; ++k)
@@ -955,6 +960,15 @@ SheetOptions SheetOptions::paper_from_string(const std::string& text) {
 }
 
 SheetLayout layout_net_sheets(const std::vector<Net>& nets, const SheetOptions& opt) { return sheets::layout(nets, opt); }
+
+std::string net_sheet_problem(const Net& net) {
+  try {
+    sheets::make_model(net, 0);
+  } catch (const sheets::BadNet& e) {
+    return e.reason;
+  }
+  return {};
+}
 
 void write_net_sheets(const std::vector<Net>& nets, const SheetOptions& opt, const std::vector<AssemblyJoin>& assembly,
                       std::ostream& out) {

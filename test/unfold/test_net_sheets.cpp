@@ -633,8 +633,17 @@ BOOST_AUTO_TEST_CASE(bad_input_is_rejected) {
   Net wrong_edge = tetra_star("wrong");
   std::swap(wrong_edge.edges[0].v0, wrong_edge.edges[0].v1);
   BOOST_CHECK_THROW(render({wrong_edge}, o), std::invalid_argument);
+  // The reasons, net by net, so that a caller can leave a bad net off and print the rest.
+  BOOST_TEST(dcshell::net_sheet_problem(cube_cross("good")).empty());
+  BOOST_TEST(dcshell::net_sheet_problem(tetra_star("good")).empty());
+  BOOST_TEST(dcshell::net_sheet_problem(one_mirrored_face) == "face 5 is clockwise in the net (mirrored)");
+  BOOST_TEST(dcshell::net_sheet_problem(mirrored).find("mirrored") != std::string::npos);
+  BOOST_TEST(dcshell::net_sheet_problem(broken).find("sizes do not match") != std::string::npos);
+  BOOST_TEST(dcshell::net_sheet_problem(wrong_edge).find("is not an edge") != std::string::npos);
+  BOOST_CHECK_NO_THROW(render({cube_cross("a"), tetra_star("b")}, o));
   SheetOptions tiny = SheetOptions::paper_from_string("30x30mm");
   BOOST_CHECK_THROW(render({tetra_star("t")}, tiny), std::invalid_argument);
+  BOOST_TEST(dcshell::net_sheet_problem(tetra_star("t")).empty());  // the paper's problem, not the net's
   SheetOptions negative;
   negative.scale_mm_per_unit = -1;
   BOOST_CHECK_THROW(render({tetra_star("t")}, negative), std::invalid_argument);
