@@ -22,6 +22,8 @@
 // of shells far apart, as in a large scene or a fine decomposition), their plain shells, then
 // the time (median of --repeat) of neighbour_constraints and of remeshing every shell with the
 // paper's setting, one shell per core, and how many LPs/QPs went to the exact solver.
+// --random-cones N [--points P]: the same for N hulls of the apex and P seeded random points on
+// cones (an apex whose star spans the cone: the enclosure rows of its QP).
 #include <CGAL/Polygon_mesh_processing/measure.h>
 #include <CGAL/Polygon_mesh_processing/remesh.h>
 
@@ -202,11 +204,9 @@ std::vector<ShellConstraints> pipeline_constraints(const ShellResult& plain, con
   return cons;
 }
 
-int bench_many_boxes(int n, int repeat) {
-  std::mt19937_64 rng(42);
-  // 400 boxes in a cube of side 20 (half extents 0.3-2): about 2.5 overlapping pairs per box.
-  const double side = 20 * std::cbrt(n / 400.0);
-  const auto parts = synthetic::random_boxes(rng, n, side, 0.3, 2.0);
+// The plain shells of `parts`, remeshed with the default options: timing, solves, fatness.
+int bench_synthetic(const std::vector<Part>& parts, const std::string& what, int repeat) {
+  const int n = static_cast<int>(parts.size());
   const ShellResult plain = build_shells(parts, ShellOptions{});
   std::vector<Mesh> meshes;
   std::size_t faces = 0;
@@ -231,12 +231,26 @@ int bench_many_boxes(int n, int repeat) {
   FatSum f0, f1;
   for (const Mesh& m : meshes) f0.add(m);
   for (const Mesh& m : post) f1.add(m);
-  std::cout << "| boxes | shells | faces | neighbour constraints (s) | remesh (s) | LPs/QPs | exact | fatness | certified |\n"
+  std::cout << "| " << what << " | shells | faces | neighbour constraints (s) | remesh (s) | LPs/QPs | exact | fatness | certified |\n"
                "|---|---|---|---|---|---|---|---|---|\n";
   std::printf("| %d | %zu | %zu | %.3f | %.3f | %zu | %zu | %.4f -> %.4f | %s |\n", n, meshes.size(), faces,
               t_cons[t_cons.size() / 2], t_remesh[t_remesh.size() / 2], all, exact, f0.value(), f1.value(),
               certify(post).certified() ? "yes" : "NO");
   return 0;
+}
+
+int bench_many_boxes(int n, int repeat) {
+  std::mt19937_64 rng(42);
+  // 400 boxes in a cube of side 20 (half extents 0.3-2): about 2.5 overlapping pairs per box.
+  const double side = 20 * std::cbrt(n / 400.0);
+  return bench_synthetic(synthetic::random_boxes(rng, n, side, 0.3, 2.0), "boxes", repeat);
+}
+
+int bench_random_cones(int n, int points, int repeat) {
+  std::mt19937_64 rng(7);
+  // 12 cones in a cube of side 3: most of them overlap one or two others.
+  return bench_synthetic(synthetic::random_cones(rng, n, points, 3 * std::cbrt(n / 12.0)),
+                         "cones of " + std::to_string(points) + " points", repeat);
 }
 
 int main(int argc, char** argv) {
@@ -246,7 +260,7 @@ int main(int argc, char** argv) {
   int iterations = 100, repeat = 3;
   bool hulls_on = true, shells = true, splits = true, flips = true;
   double face_factor = 1;
-  int many_boxes = 0;
+  int many_boxes = 0, cones = 0, points = 2000;
   std::vector<double> ratios{0.01, 0.1, 1.0, 10.0};
   po::options_description opts("usage: bench_remesh [options]\n\noptions");
   opts.add_options()("help,h", "show this help")("data", po::value(&data), "shared data directory (holds composite/)")(
@@ -261,10 +275,14 @@ int main(int argc, char** argv) {
       "post-only: each shell may have this many times its plain faces (what more faces would buy)")(
       "breakdown", "per model: where the paper pipeline's area and fatness are (stderr)")(
       "many-boxes", po::value(&many_boxes)->default_value(0),
-      "only: remesh the plain shells of this many random boxes (timing, exact solves)");
+      "only: remesh the plain shells of this many random boxes (timing, exact solves)")(
+      "random-cones", po::value(&cones)->default_value(0),
+      "only: remesh the plain shells of this many hulls of random points on cones")(
+      "points", po::value(&points)->default_value(2000), "points per cone (--random-cones)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (many_boxes > 0) return bench_many_boxes(many_boxes, repeat);
+  if (cones > 0) return bench_random_cones(cones, points, repeat);
   const fs::path root = fs::path(data) / "composite";
   if (!fs::is_directory(root)) {
     std::cerr << "bench_remesh: no " << root << " (shared data absent); nothing to do\n";

@@ -75,4 +75,29 @@ inline std::vector<Part> random_spheres(std::mt19937_64& rng, int n, int lat, do
   return parts;
 }
 
+/// n cones along z, each the hull of its apex and `points` random points on its surface (side and
+/// base by area), base radius and height uniform in [0.5, 1.5], centres uniform in [0, side]^3.
+/// The side is ruled: the hull's edges run along it to the apex, whose star then holds hundreds
+/// of faces and spans the whole cone; the base is exactly flat (one z), as a CAD cone's is.
+inline std::vector<Part> random_cones(std::mt19937_64& rng, int n, int points, double side) {
+  auto u = [&](double a, double b) { return uniform(rng, a, b); };
+  std::vector<Part> parts(static_cast<std::size_t>(n));
+  for (int k = 0; k < n; ++k) {
+    const double c[3] = {u(0, side), u(0, side), u(0, side)}, r = u(0.5, 1.5), h = u(0.5, 1.5);
+    const double base = c[2] - h / 2, apex = c[2] + h / 2;
+    parts[std::size_t(k)].name = "cone" + std::to_string(k);
+    auto& pts = parts[std::size_t(k)].points;
+    pts.emplace_back(c[0], c[1], apex);
+    const double side_area = M_PI * r * std::hypot(r, h), base_area = M_PI * r * r;
+    for (int i = 0; i < points; ++i) {
+      const double pick = u(0, side_area + base_area), th = u(0, 2 * M_PI), f = std::sqrt(u(0, 1));
+      // f: distance from the apex (side) or the axis (base) as a fraction, uniform by area.
+      const bool on_side = pick < side_area;
+      const double rho = r * f, z = on_side ? apex - h * f : base;
+      pts.emplace_back(c[0] + rho * std::cos(th), c[1] + rho * std::sin(th), z);
+    }
+  }
+  return parts;
+}
+
 }  // namespace dcshell::synthetic

@@ -18,9 +18,9 @@ constexpr int kActiveSetRounds = 6;
 // vertex's box holds many points of which few ever bind.
 struct EncloseRows {
   std::vector<std::pair<std::size_t, std::size_t>> active;  // (point, ring index)
-  bool has(std::size_t o, std::size_t i) const {
-    return std::find(active.begin(), active.end(), std::make_pair(o, i)) != active.end();
-  }
+  // Per (position in `near`, ring index): taken in. A flat neighbourhood (a cap of hundreds of
+  // points on its plane) takes in nearly every pair, and a search of `active` made that quadratic.
+  std::vector<char> taken;
 };
 
 }  // namespace
@@ -105,13 +105,18 @@ std::size_t Workspace::regularise_sweep(const std::vector<Point3>& enclose, cons
           if (len > 0) base.push_back({a / len, room / len - mg});
         }
         EncloseRows er;
+        er.taken.assign(near.size() * n, 0);
         auto add_violated = [&](const Eigen::Vector3d& y) {
           bool added = false;
-          for (std::size_t o : near)
+          for (std::size_t j = 0; j < near.size(); ++j)
             for (std::size_t i = 0; i < n; ++i) {
-              if (er.has(o, i)) continue;
-              auto r = enclose_row(o, i, mg);
-              if (!r.empty() && value(r[0], y) > -mg) { er.active.push_back({o, i}); added = true; }
+              if (er.taken[j * n + i]) continue;
+              auto r = enclose_row(near[j], i, mg);
+              if (!r.empty() && value(r[0], y) > -mg) {
+                er.taken[j * n + i] = 1;
+                er.active.push_back({near[j], i});
+                added = true;
+              }
             }
           return added;
         };
