@@ -360,7 +360,7 @@ PolygonSoup read_polygon_soup(const std::string& path) {
     std::vector<std::vector<std::size_t>> faces;
     bool ok = false;
     if (ext == ".ply") check_binary_ply_sizes(path);
-    else check_off_stl_sizes(path, ext);
+    else if (ext == ".off" || ext == ".stl") check_off_stl_sizes(path, ext);
     try {
       ok = CGAL::IO::read_polygon_soup(path, pts, faces, CGAL::parameters::verbose(false));
     } catch (const std::bad_alloc&) {

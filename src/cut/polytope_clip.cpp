@@ -228,8 +228,9 @@ ConvexPolytope intersect(const ConvexPolytope& p, const ConvexPolytope& q) {
   // overlap is bounded by hundreds of faces of each: 600 copies of a 2,000-vertex polytope).
   // A plane that misses r misses every part of it, so it is never needed.
   std::vector<std::pair<double, std::size_t>> order;
+  std::vector<CutPlane> planes(clipper.faces.size());
   for (std::size_t f = 0; f < clipper.faces.size(); ++f) {
-    const CutPlane h = face_plane(clipper, f);
+    const CutPlane& h = planes[f] = face_plane(clipper, f);
     const double mag = std::fabs(h.offset) + r.vertices[0].lpNorm<Eigen::Infinity>();
     double deepest = -std::numeric_limits<double>::infinity();
     for (const auto& v : r.vertices) deepest = std::max(deepest, h.eval(v));
@@ -238,7 +239,7 @@ ConvexPolytope intersect(const ConvexPolytope& p, const ConvexPolytope& q) {
   std::stable_sort(order.begin(), order.end());
   for (std::size_t k = 0; k < order.size() && !r.empty(); ++k) {
     const std::size_t f = order[k].second;
-    const CutPlane h = face_plane(clipper, f);
+    const CutPlane& h = planes[f];
     // Planes that cut the first r may miss what is left: test before clip() copies r.
     const double mag = std::fabs(h.offset) + r.vertices[0].lpNorm<Eigen::Infinity>();
     bool cuts = false;

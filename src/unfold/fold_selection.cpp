@@ -18,6 +18,13 @@ namespace {
 // (doc/fold_check.md, *Sampled refutation*): a few sampled states refute them for about one
 // step's work, where the check would run to their first contact.
 constexpr int kProbeStates = 16;
+// Pairs examined per unit of budget, in a check (FoldCheckOptions::pairs_per_work, a bound) and in
+// a probe (a cost).
+constexpr double kPairsPerWork = 25;
+// Corners tested against planes per unit of budget (FoldCheckOptions::corners_per_work). The
+// shared sets' checks test up to 240 per unit of their own budget; the candidates of a hull of
+// 600 random points on a cylinder up to 3,700, 0.35 s each: its shell took 10.4 s, now 2.2 s.
+constexpr double kCornersPerWork = 1000;
 
 const UnfoldHeuristic kFreshHeuristics[] = {UnfoldHeuristic::steepest, UnfoldHeuristic::flat,
                                             UnfoldHeuristic::min_perimeter, UnfoldHeuristic::random};
@@ -64,14 +71,6 @@ bool FoldSelection::run(int checks) {
   report_first_contact();
   return have_;
 }
-
-// Pairs examined per unit of budget, in a check (FoldCheckOptions::pairs_per_work, a bound) and in
-// a probe (a cost).
-constexpr double kPairsPerWork = 25;
-// Corners tested against planes per unit of budget (FoldCheckOptions::corners_per_work). The
-// shared sets' checks test up to 240 per unit of their own budget; the candidates of a hull of
-// 600 random points on a cylinder up to 3,700, 0.35 s each: its shell took 10.4 s, now 2.2 s.
-constexpr double kCornersPerWork = 1000;
 
 bool FoldSelection::check(const Genome& genome, const std::string& heuristic, long long budget, bool first_pass,
                           const std::vector<int>* proved) {
