@@ -141,6 +141,7 @@ int run_unfold(int argc, char** argv) {
     po::options_description opts(
         "usage: dcshell unfold [options] --out DIR SHELL|DIR...\n\n"
         "Unfolds each closed convex shell into a one-piece net that folds back without collision.\n"
+        "A file of several OBJ objects (or, without objects, connected components) is one shell each.\n"
         "Writes DIR/net_NNN.obj (the flat net, z = 0: the shell's triangles in order, corners in\n"
         "order), DIR/nets.svg or nets.pdf (printable sheets) and DIR/unfold.json (per shell: faces,\n"
         "cut length, net hull area, overlap-free, fold path verified, time).\n"
@@ -213,14 +214,26 @@ int run_unfold(int argc, char** argv) {
     const bool timings = !vm.count("no-timings");
     const bool quiet = vm.count("quiet") > 0;
     auto t0 = std::chrono::steady_clock::now();
-    auto files = expand_inputs(inputs);
+    // One shell per object, as `check` and `remesh` read them: a file holding several (a
+    // `shells.obj`, a V-HACD output) is a set of shells. `files` names each shell ("file" or
+    // "file#object"), `labels` is what its net is called, `paths` are the files (never written).
+    const std::vector<std::string> paths = expand_inputs(inputs);
+    std::vector<std::string> files, labels;
     std::vector<Mesh> meshes;
-    for (auto& f : files) meshes.push_back(read_mesh(f));
+    for (const auto& path : paths) {
+      auto objects = read_mesh_objects(path);
+      const std::string stem = fs::path(path).stem().string();
+      for (auto& [name, mesh] : objects) {
+        labels.push_back(objects.size() == 1 ? stem : name.substr(path.size() + 1));
+        files.push_back(name);
+        meshes.push_back(std::move(mesh));
+      }
+    }
     // Input index of each shell kept: a flat or tiny shell among good ones is skipped with a
     // warning (net_k.obj keeps the input's index k).
     const std::vector<std::size_t> index = skip_flat_and_tiny(files, meshes, quiet);
-    AtomicDirectory dir(out, vm.count("force") > 0, files);
-    std::vector<std::string> protect = files;
+    AtomicDirectory dir(out, vm.count("force") > 0, paths);
+    std::vector<std::string> protect = paths;
     protect.insert(protect.end(), inputs.begin(), inputs.end());
     const std::vector<std::string> frame_names =
         motion.empty() ? std::vector<std::string>{} : motion_frame_names(motion, frames, vm.count("force") > 0, protect, out);
@@ -260,7 +273,7 @@ int run_unfold(int argc, char** argv) {
     std::set<std::string> used_names;
     for (std::size_t k = 0; k < files.size(); ++k) {
       auto& s = shells[k];
-      std::string name = fs::path(files[k]).stem().string();
+      std::string name = labels[index[k]];
       if (!used_names.insert(name).second) name = numbered("shell_", index[k], "");
       used_names.insert(name);
       s.net.name = name;

@@ -90,6 +90,21 @@ grep -q "a_flat.obj is flat.*skipped" "$T/err.txt" || fail "flat shell warning: 
 [ ! -s "$T/err.txt" ] || fail "-q still printed: $(cat "$T/err.txt")"
 [ -s "$T/flq/net_001.obj" ] || fail "-q wrote no net"
 
+# A file of several objects (the shells.obj that `shell` writes, a V-HACD output) is a set of
+# shells, as for check and remesh: one net per object, named by it, the same as from the files.
+{ echo "o first"; cat "$T/cube.obj"; echo "o second"; sed -n '1,4p' "$T/tet.obj";
+  sed -n '5,$p' "$T/tet.obj" | awk '{ print "f", $2 + 8, $3 + 8, $4 + 8 }'; } > "$T/both.obj"
+"$BIN" unfold -q --no-timings --out "$T/obj2" "$T/both.obj" || fail "two objects in one file: exit $?"
+for k in 000 001; do  # the same net; only the header's name differs
+  diff -q <(sed 1d "$T/obj2/net_$k.obj") <(sed 1d "$T/nt1/net_$k.obj") > /dev/null || fail "object net $k differs from its file's"
+done
+grep -q '^# dcshell net second:' "$T/obj2/net_001.obj" || fail "object net header does not name the object"
+grep -q '"input": ".*both.obj#second"' "$T/obj2/unfold.json" || fail "object input not named"
+grep -q '"name": "second"' "$T/obj2/unfold.json" || fail "object net not named by its object"
+grep -v '^o ' "$T/both.obj" > "$T/both_nogroups.obj"
+"$BIN" unfold -q --out "$T/cc2" "$T/both_nogroups.obj" || fail "two components in one file: exit $?"
+[ -s "$T/cc2/net_001.obj" ] || fail "two components: no second net"
+
 # Bad input: one line naming the file, exit 2, nothing written.
 expect_2() {
   local what=$1; shift
