@@ -1,6 +1,8 @@
 // `dcshell unfold`: convex shells -> one-piece overlap-free nets (net_k.obj), printable sheets
 // (nets.svg|pdf), a JSON report with the folding check, and optionally the folding motion.
+#include <algorithm>
 #include <boost/program_options.hpp>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -224,7 +226,11 @@ int run_unfold(int argc, char** argv) {
       auto objects = read_mesh_objects(path);
       const std::string stem = fs::path(path).stem().string();
       for (auto& [name, mesh] : objects) {
-        labels.push_back(objects.size() == 1 ? stem : name.substr(path.size() + 1));
+        // An object is named by its group; a bare component number gets the file's stem.
+        const std::string object = objects.size() == 1 ? "" : name.substr(path.size() + 1);
+        const bool numbered_component =
+            !object.empty() && std::all_of(object.begin(), object.end(), [](unsigned char c) { return std::isdigit(c); });
+        labels.push_back(object.empty() ? stem : numbered_component ? stem + "_" + object : object);
         files.push_back(name);
         meshes.push_back(std::move(mesh));
       }

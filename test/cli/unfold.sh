@@ -104,6 +104,7 @@ grep -q '"name": "second"' "$T/obj2/unfold.json" || fail "object net not named b
 grep -v '^o ' "$T/both.obj" > "$T/both_nogroups.obj"
 "$BIN" unfold -q --out "$T/cc2" "$T/both_nogroups.obj" || fail "two components in one file: exit $?"
 [ -s "$T/cc2/net_001.obj" ] || fail "two components: no second net"
+grep -q '"name": "both_nogroups_1"' "$T/cc2/unfold.json" || fail "component net not named by its file and number"
 
 # Bad input: one line naming the file, exit 2, nothing written.
 expect_2() {
