@@ -29,6 +29,11 @@ bool triangle_interiors_overlap(const Triangle2& a, const Triangle2& b);
 std::vector<std::pair<int, int>> find_net_overlaps(const Net& net,
                                                    std::size_t max_pairs = std::numeric_limits<std::size_t>::max());
 
+/// Whether any two of the triangles have overlapping interiors: the same answer as
+/// `!find_net_overlaps(net, 1).empty()` for a net with these corners, by a sweep along x that
+/// stops at the first overlap (the unfolder asks this of hundreds of candidate trees a shell).
+bool any_overlap(const std::vector<Triangle2>& corners);
+
 /// Everything a checker asks of a net (issue 5 §7), each decided independently.
 struct NetCheck {
   bool congruent = false;  ///< every face has its shell triangle's edge lengths (relative tol)

@@ -120,6 +120,34 @@ std::vector<std::pair<int, int>> find_net_overlaps(const Net& net, std::size_t m
   return pairs;
 }
 
+bool any_overlap(const std::vector<Triangle2>& corners) {
+  // The pairs of closed boxes that meet (those box_self_intersection_d reports), found in the
+  // order of a sweep over low x; the answer does not depend on that order.
+  const int n = static_cast<int>(corners.size());
+  thread_local std::vector<std::pair<double, int>> by_low_x;
+  thread_local std::vector<double> lx, hx, ly, hy;
+  by_low_x.resize(n);
+  for (int f = 0; f < n; ++f) {
+    const auto& c = corners[f];
+    by_low_x[f] = {std::min({c[0].x(), c[1].x(), c[2].x()}), f};
+  }
+  std::sort(by_low_x.begin(), by_low_x.end());
+  lx.resize(n), hx.resize(n), ly.resize(n), hy.resize(n);
+  for (int i = 0; i < n; ++i) {
+    const auto& c = corners[by_low_x[i].second];
+    lx[i] = by_low_x[i].first;
+    hx[i] = std::max({c[0].x(), c[1].x(), c[2].x()});
+    ly[i] = std::min({c[0].y(), c[1].y(), c[2].y()});
+    hy[i] = std::max({c[0].y(), c[1].y(), c[2].y()});
+  }
+  for (int i = 0; i < n; ++i)
+    for (int j = i + 1; j < n && lx[j] <= hx[i]; ++j)
+      if (ly[j] <= hy[i] && hy[j] >= ly[i] &&
+          triangle_interiors_overlap(corners[by_low_x[i].second], corners[by_low_x[j].second]))
+        return true;
+  return false;
+}
+
 NetCheck check_net(const Net& net, double tol) {
   NetCheck r;
   const int nf = static_cast<int>(net.shell_faces.size());

@@ -98,12 +98,14 @@ double hull_area(const std::vector<Epick::Point_2>& pts) {
 }
 
 std::vector<char> folded_groups(const ShellGraph& g, const Genome& w) {
-  std::vector<int> order(g.num_groups());
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return w[a] < w[b]; });
+  // Increasing weight, ties by index (a stable sort by weight, in one pass over plain pairs).
+  thread_local std::vector<std::pair<double, int>> order;
+  order.resize(g.num_groups());
+  for (int gi = 0; gi < g.num_groups(); ++gi) order[gi] = {w[gi], gi};
+  std::sort(order.begin(), order.end());
   UnionFind uf(g.num_facets);
   std::vector<char> folded(g.num_groups(), 0);
-  for (int gi : order) {
+  for (const auto& [weight, gi] : order) {
     const auto ab = g.group_facets(gi);
     folded[gi] = uf.unite(ab[0], ab[1]);
   }
@@ -116,15 +118,12 @@ std::uint64_t tree_hash(const std::vector<char>& folded) {
   return h;
 }
 
-Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t max_overlaps) {
+Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t max_overlaps, bool metrics_only) {
   const int nf = static_cast<int>(g.F.size());
   const int ne = static_cast<int>(g.edges.size());
   Decoded d;
   d.tree_hash = tree_hash(folded);
   Net& net = d.net;
-  net.shell_vertices = g.V;
-  net.shell_faces = g.F;
-  net.edges = g.edges;
 
   // Face tree: flat edges first (every facet becomes a subtree), then the folded groups.
   std::vector<char> in_tree(ne, 0);
@@ -214,9 +213,9 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
     while (g.F[f][k] != v) ++k;
     return k;
   };
+  std::vector<char> fold(in_tree);
   for (int i = 0; i < ne; ++i) {
-    auto& e = net.edges[i];
-    e.fold = in_tree[i];
+    const auto& e = g.edges[i];
     if (in_tree[i]) continue;
     int gi = g.edge_group[i];
     if (gi >= 0 && !folded[gi]) continue;
@@ -224,16 +223,16 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
     // keeps its subdivision points on the edge line (pyramid2, 6 decimals: 1e-6 apart); merging
     // them moves a corner by at most 1e-5 of the model size, invisible on paper.
     double tol = gi >= 0 ? std::max(1e-7 * g.edge_length[i], 1e-5 * g.scale) : 1e-7 * g.edge_length[i];
-    e.fold = (P[e.f0][corner(e.f0, e.v0)] - P[e.f1][corner(e.f1, e.v0)]).norm() <= tol &&
-             (P[e.f0][corner(e.f0, e.v1)] - P[e.f1][corner(e.f1, e.v1)]).norm() <= tol;
+    fold[i] = (P[e.f0][corner(e.f0, e.v0)] - P[e.f1][corner(e.f1, e.v0)]).norm() <= tol &&
+              (P[e.f0][corner(e.f0, e.v1)] - P[e.f1][corner(e.f1, e.v1)]).norm() <= tol;
   }
 
   // Net vertices: corners joined across folds share one position (the earliest placed), so
   // faces meeting along a fold touch exactly in the overlap test and in the written OBJ.
   UnionFind cu(3 * nf);
   for (int i = 0; i < ne; ++i) {
-    const auto& e = net.edges[i];
-    if (!e.fold) continue;
+    const auto& e = g.edges[i];
+    if (!fold[i]) continue;
     for (int v : {e.v0, e.v1}) cu.unite(3 * e.f0 + corner(e.f0, v), 3 * e.f1 + corner(e.f1, v));
   }
   std::vector<int> best(3 * nf, -1);
@@ -253,9 +252,18 @@ Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t
     }
 
   for (int i = 0; i < ne; ++i)
-    if (!net.edges[i].fold) d.metrics.cut_length += g.edge_length[i];
+    if (!fold[i]) d.metrics.cut_length += g.edge_length[i];
   d.metrics.hull_area = hull_area(points);
-  if (max_overlaps > 0) d.metrics.overlapping_pairs = static_cast<int>(find_net_overlaps(net, max_overlaps).size());
+  if (max_overlaps == 1)
+    d.metrics.overlapping_pairs = any_overlap(net.corners) ? 1 : 0;
+  else if (max_overlaps > 0)
+    d.metrics.overlapping_pairs = static_cast<int>(find_net_overlaps(net, max_overlaps).size());
+  if (!metrics_only) {
+    net.shell_vertices = g.V;
+    net.shell_faces = g.F;
+    net.edges = g.edges;
+    for (int i = 0; i < ne; ++i) net.edges[i].fold = fold[i];
+  }
   return d;
 }
 
@@ -310,20 +318,16 @@ Genome steepest_edge_weights(const ShellGraph& g, const Eigen::Vector3d& c) {
   // steepest ascending polytope edge. Those cuts form a spanning tree of the vertices; giving
   // them the largest weights makes Kruskal fold everything else.
   Genome w(g.num_groups());
-  std::map<int, std::vector<int>> incident;
-  for (int gi = 0; gi < g.num_groups(); ++gi) {
-    w[gi] = steepness(g, gi, c);
-    incident[g.group_ends[gi][0]].push_back(gi);
-    incident[g.group_ends[gi][1]].push_back(gi);
-  }
+  for (int gi = 0; gi < g.num_groups(); ++gi) w[gi] = steepness(g, gi, c);
   auto higher = [&](int u, int v) {  // u above v, ties broken by index (generic direction)
     double hu = c.dot(g.V[u]), hv = c.dot(g.V[v]);
     return hu > hv || (hu == hv && u > v);
   };
-  for (auto& [v, groups] : incident) {
+  for (int v = 0; v + 1 < static_cast<int>(g.end_start.size()); ++v) {
     int pick = -1;
     double best = -1;
-    for (int gi : groups) {
+    for (int k = g.end_start[v]; k < g.end_start[v + 1]; ++k) {
+      const int gi = g.end_groups[k];
       int u = g.group_ends[gi][0] == v ? g.group_ends[gi][1] : g.group_ends[gi][0];
       if (!higher(u, v)) continue;
       double s = c.dot(g.V[u] - g.V[v]) / (g.V[u] - g.V[v]).norm();

@@ -32,6 +32,8 @@ struct ShellGraph {
   std::vector<int> edge_group;                ///< per edge; -1 for a flat edge
   std::vector<std::vector<int>> group_edges;  ///< per group, its edges
   std::vector<std::array<int, 2>> group_ends; ///< chain end vertices of each group
+  /// Groups ending at vertex v (either end), increasing: end_groups[end_start[v] .. end_start[v + 1]).
+  std::vector<int> end_start, end_groups;
   std::vector<double> group_length;
   std::vector<int> flat_edges;
   /// Face corners in their facet's own plane coordinates (projection on the facet's mean plane).
@@ -98,7 +100,9 @@ double hull_area(const std::vector<Epick::Point_2>& pts);
 std::vector<char> folded_groups(const ShellGraph& g, const Genome& w);
 std::uint64_t tree_hash(const std::vector<char>& folded);
 /// `max_overlaps`: stop the overlap search after that many pairs (0 = no overlap search).
-Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t max_overlaps);
+/// `metrics_only`: the net gets its corners and parents only (no copy of the shell and edges).
+Decoded decode(const ShellGraph& g, const std::vector<char>& folded, std::size_t max_overlaps,
+               bool metrics_only = false);
 
 /// What the search and the GA decode their trees on. On a shell whose facets are subdivided (a
 /// cube of 76,800 triangles has 6 facets) that is the coarse shell: each facet as a fan of its

@@ -210,6 +210,17 @@ ShellGraph build_shell_graph(std::vector<Eigen::Vector3d> V, std::vector<std::ar
     g.group_ends.push_back({ends[0], ends[1]});
     g.group_length.push_back(len);
   }
+  // Groups by end vertex (both ends), in increasing group order: the steepest-edge heuristic
+  // visits them once per direction.
+  g.end_start.assign(g.V.size() + 1, 0);
+  for (const auto& ends : g.group_ends) ++g.end_start[ends[0] + 1], ++g.end_start[ends[1] + 1];
+  for (std::size_t v = 0; v < g.V.size(); ++v) g.end_start[v + 1] += g.end_start[v];
+  g.end_groups.resize(g.end_start.back());
+  {
+    std::vector<int> fill(g.end_start.begin(), g.end_start.end() - 1);
+    for (int gi = 0; gi < g.num_groups(); ++gi)
+      for (int v : g.group_ends[gi]) g.end_groups[fill[v]++] = gi;
+  }
   return g;
 }
 
@@ -304,10 +315,10 @@ SearchGraph make_search_graph(const ShellGraph& g, double flat_angle) {
 }
 
 NetMetrics SearchGraph::evaluate(const std::vector<char>& folded) const {
-  if (!use_coarse) return decode(*fine, folded, 1).metrics;
+  if (!use_coarse) return decode(*fine, folded, 1, true).metrics;
   std::vector<char> fc(folded.size());
   for (std::size_t gi = 0; gi < folded.size(); ++gi) fc[group_map[gi]] = folded[gi];
-  return decode(coarse, fc, 1).metrics;
+  return decode(coarse, fc, 1, true).metrics;
 }
 
 std::vector<Eigen::Vector3d> preferred_directions(const ShellGraph& g) {

@@ -481,6 +481,31 @@ BOOST_AUTO_TEST_CASE(search_on_coarse_facets_matches_the_fine_shell) {
   BOOST_TEST(st.result.cut_length == 35.0);  // 7 cube edges of length 5
 }
 
+BOOST_AUTO_TEST_CASE(first_overlap_search_agrees_with_the_full_one) {
+  // The search's trees are decoded with the metrics only and stop at the first overlap: the
+  // same features, corners and overlap verdict as the full decode and find_net_overlaps.
+  using namespace dcshell::unfold_detail;
+  Mesh m = ellipsoid_hull(150, 7, 0.6, 0.3);
+  ShellGraph g = build_shell_graph(m, 1e-4);
+  Rng rng(11);
+  int overlapping = 0, free = 0;
+  for (int i = 0; i < 200; ++i) {
+    const Genome w = i % 2 ? random_weights(g, rng) : steepest_edge_weights(g, rng.direction());
+    const auto folded = folded_groups(g, w);
+    const Decoded full = decode(g, folded, 0), quick = decode(g, folded, 1, true);
+    const bool overlaps = !find_net_overlaps(full.net).empty();
+    BOOST_TEST(any_overlap(full.net.corners) == overlaps, "tree " << i);
+    BOOST_TEST(quick.metrics.overlapping_pairs == (overlaps ? 1 : 0), "tree " << i);
+    BOOST_TEST(quick.metrics.cut_length == full.metrics.cut_length);
+    BOOST_TEST(quick.metrics.hull_area == full.metrics.hull_area);
+    BOOST_TEST((quick.net.corners == full.net.corners));
+    BOOST_TEST(quick.net.edges.empty());
+    (overlaps ? overlapping : free)++;
+  }
+  BOOST_TEST(overlapping > 20);
+  BOOST_TEST(free > 20);
+}
+
 BOOST_AUTO_TEST_CASE(fine_pyramid_unfolds_overlap_free) {
   // Thousands of thin faces around an apex: steepest edge from random directions overlaps;
   // toward the apex it is the petal unfolding.
