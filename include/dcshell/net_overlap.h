@@ -3,7 +3,8 @@
 // Net coordinates are doubles computed by the unfolder; "interiors overlap" is decided exactly on
 // those doubles (Epick 2D orientation predicates), so the answer never depends on a tolerance.
 // Faces joined along a fold share their corner coordinates bit for bit and therefore touch without
-// overlapping. Candidate pairs come from CGAL::box_self_intersection_d: O(n log n) in practice.
+// overlapping. Candidate pairs come from CGAL::box_self_intersection_d: O(n log n) in practice
+// (any_overlap, the yes/no test of the search's trees, scans a sort by low x and stops at the first).
 #pragma once
 #include <Eigen/Core>
 #include <array>
