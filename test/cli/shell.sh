@@ -107,7 +107,9 @@ grep -q '"certified": true' "$T/star_out/report.json" || fail "plank star shells
 "$BIN" volume-loss -q --parts "$T/star" --shells "$T/star_out" > "$T/star.json" || fail "volume-loss of the plank star"
 grep -q '"union_method": "decomposition"' "$T/star.json" || fail "plank star union: $(grep union_ "$T/star.json")"
 # Both are certified enclosures of the same exact number (the two reached it by different walks).
-u1=$(grep -h '"union_volume":' "$T/star.json" | tr -dc '0-9.e-'); u2=$(grep -h '"union_volume":' "$T/star_out/report.json" | tr -dc '0-9.e-')
+# The value after the key (the key's own letters must not be taken into the number).
+value() { grep -h "\"$1\":" "$2" | head -1 | sed 's/.*": *//; s/[,} ]*$//'; }
+u1=$(value union_volume "$T/star.json"); u2=$(value union_volume "$T/star_out/report.json")
 awk -v a="$u1" -v b="$u2" 'BEGIN { d = a - b; if (d < 0) d = -d; exit !(a > 0 && d <= 1e-12 * a) }' ||
   fail "the shell report and volume-loss disagree on the union: $u1 vs $u2"
 
