@@ -66,10 +66,19 @@ struct FoldCheckOptions {
   /// t_begin refutes it in a few steps, where the whole check would first step through the path
   /// before it (what end_first does).
   double t_begin = 0;
-  /// Check t in [1 - end_first, 1] first (0: not). When that fails conclusively, that failure is
-  /// the result (refuted_at_end: the net can never be verified, and the steps before the end
-  /// were not checked); else the path from t_begin is checked exactly as without it, reusing the
-  /// pairs' set-up. The unfolder's candidates are checked so (UnfoldOptions::fold_screen).
+  /// Prove the end of the path, t in [1 - end_proof, 1], on its own first, from the state at
+  /// 1 - end_proof (0: not). When it holds, the path from t_begin is checked only up to that
+  /// state: near t = 1 the pieces close up, and a pass arriving there from t_begin can crawl and
+  /// fail to prove what the pass from 1 - end_proof proved (rare: one returned net of the shared
+  /// sets' DC-shells). When it does not hold, the path from t_begin is checked up to 1 exactly
+  /// as without it (the pairs' set-up is reused), after the end's steps were spent for nothing;
+  /// so it only pays where the end is screened anyway (end_first, the unfolder's candidates).
+  /// With the same end_proof, a verdict is the same whether or not the end was screened.
+  double end_proof = 0;
+  /// Check t in [1 - end_first, 1] first (0: not; replaces end_proof). When that fails
+  /// conclusively, that failure is the result (refuted_at_end: the net can never be verified,
+  /// and the steps before the end were not checked); else as end_proof. The unfolder's
+  /// candidates are checked so (UnfoldOptions::fold_screen).
   double end_first = 0;
   /// With end_first: when the end fails but not conclusively, stop there too (undecided_at_end)
   /// instead of checking the path from t_begin. Such a net almost never verifies from t_begin
@@ -107,7 +116,7 @@ struct FoldCheckResult {
   /// With end_first: the end of the path failed conclusively and is the result; t, the faces and
   /// the message are that failure's, not the first contact along the path.
   bool refuted_at_end = false;
-  int end_first_steps = 0;  ///< with end_first: the steps of the end's check (not in steps)
+  int end_first_steps = 0;  ///< with end_first or end_proof: the steps of the end's check (not in steps)
   /// With end_first_defers: the end of the path failed, not conclusively, and the path before it
   /// was not checked (undecided, like out_of_budget; t, faces and message are the end's failure).
   bool undecided_at_end = false;

@@ -74,8 +74,9 @@ struct UnfoldOptions {
   /// straight-line folds mostly fail (FoldCheckOptions::end_first): a conclusive failure there
   /// refutes the net in a few steps, where the whole check would first step through the path
   /// before it; an inconclusive one sets the net aside with the undecided ones (checked in full
-  /// only when no net verifies; FoldCheckOptions::end_first_defers); otherwise the whole path is
-  /// checked as without it. 0: no screen.
+  /// only when no net verifies; FoldCheckOptions::end_first_defers); otherwise the path is
+  /// checked up to where the proved end begins (FoldCheckOptions::end_proof, this window for
+  /// every check of the selection). 0: no screen, and every check steps from 0 to 1.
   double fold_screen = 1e-3;
   /// Once a net verifies, the nets scored better than it that ran out of their first share
   /// undecided (they came first: search nets in score order) are re-checked, best first, each

@@ -272,6 +272,7 @@ int run_unfold(int argc, char** argv) {
       // check within the same work budget: undecided past it, never minutes.
       FoldCheckOptions fo;
       fo.max_work = std::max<long long>(scaled_fold_work(uo.fold_work, meshes[k].number_of_faces()), 1);
+      fo.end_proof = std::max(uo.fold_screen, 0.0);  // as the selection's checks
       // Nets above FoldCheckOptions::max_pieces come back undecided without a check.
       s.fold = s.stats.fold_checks > 0 ? s.stats.fold : check_folding(s.net, fo);
       s.seconds = seconds_since(ts);

@@ -357,7 +357,7 @@ class Checker {
  private:
   // Steps the path from t0 to 1 (the set-up done). screening: a pair proved to the end is not
   // marked done in its slot (a later pass from an earlier t0 must examine it again).
-  FoldCheckResult step_path(double t0, bool screening);
+  FoldCheckResult step_path(double t0, bool screening, double t_stop = 1);
 
   const Net& net_;
   const FoldCheckOptions& opt_;
@@ -1064,29 +1064,33 @@ FoldCheckResult Checker::run() {
   lever_.assign(lever_off_[nb], 0.0);
   const double begin = std::isfinite(opt_.t_begin) ? std::clamp(opt_.t_begin, 0.0, 1.0) : 0.0;
   int end_steps = 0;
-  if (opt_.end_first > 0 && begin < 1 - opt_.end_first) {
+  double stop = 1;
+  const double end_window = opt_.end_first > 0 ? opt_.end_first : std::max(opt_.end_proof, 0.0);
+  if (end_window > 0 && begin < 1 - end_window) {
     // The end first: most straight-line folds that fail do so there, and the pairs' set-up
     // (classes, end windows) is path-independent, so the pass from begin reuses it.
-    FoldCheckResult end = step_path(1 - opt_.end_first, true);
+    FoldCheckResult end = step_path(1 - end_window, true);
     account(end, end.steps);
-    if (!end.verified && end.conclusive) {
+    if (opt_.end_first > 0 && !end.verified && end.conclusive) {
       end.refuted_at_end = true;
       return end;
     }
-    if (!end.verified && opt_.end_first_defers) {
+    if (opt_.end_first > 0 && !end.verified && opt_.end_first_defers) {
       end.undecided_at_end = true;
       return end;
     }
     end_steps = end.steps;
     std::fill(safe_until_.begin(), safe_until_.end(), 0.0);
+    // Proved from the state at 1 - end_window on: the pass from begin only has to reach it.
+    if (end.verified) stop = 1 - end_window;
   }
-  res = step_path(begin, false);
+  res = step_path(begin, false, stop);
   res.end_first_steps = end_steps;
   account(res, res.steps + end_steps);
   return res;
 }
 
-FoldCheckResult Checker::step_path(double t0, bool screening) {
+FoldCheckResult Checker::step_path(double t0, bool screening, double t_stop) {
   FoldCheckResult res;
   const int nb = static_cast<int>(pc_.size());
   res.pieces = nb;
@@ -1147,7 +1151,7 @@ FoldCheckResult Checker::step_path(double t0, bool screening) {
     // The step tried grows by 1.25 over the last one (it was 2): every pair whose proof ends
     // before t + dt is re-examined and the boxes grow with dt, while the steps of large nets are
     // set by their pairs anyway (the same steps, 30% fewer pairs examined on Pikachu's hulls).
-    dt = std::min({1.25 * dt, 1 - t, 0.5 / std::max(max_theta, 1e-300)});
+    dt = std::min({1.25 * dt, t_stop - t, 0.5 / std::max(max_theta, 1e-300)});
     if (travel(dt, max_lever, max_theta) > max_travel) dt = max_travel / (max_lever + max_travel * max_theta);
     // Candidate pairs: pieces whose boxes, inflated by how far they can travel in dt, meet
     // (closed boxes: touching counts).
@@ -1253,7 +1257,7 @@ FoldCheckResult Checker::step_path(double t0, bool screening) {
     same_limit = limit_p == last_p && limit_q == last_q ? same_limit + 1 : 0;
     last_p = limit_p, last_q = limit_q;
     t += dt;
-    if (t >= 1) {
+    if (t >= t_stop) {
       res.verified = true;
       res.t = 1;
       ++res.steps;

@@ -105,6 +105,8 @@ bool FoldSelection::check(const Genome& genome, const std::string& heuristic, lo
     fo.corners_per_work = kCornersPerWork;
     // A deferred net was screened on its first pass; one whose end the screen could not prove is
     // set aside, not checked from t = 0 (it nearly never verifies from there).
+    // The end is proved on its own (the same window): the pass from t = 0 stops where it begins.
+    fo.end_proof = std::max(options_.fold_screen, 0.0);
     if (first_pass) fo.end_first = options_.fold_screen, fo.end_first_defers = true;
     if (proved) fo.proved_group = *proved;
     fc = check_folding(candidate, fo);
@@ -252,6 +254,7 @@ void FoldSelection::report_first_contact() {
   if (done_ || !refuted_early_) return;
   FoldCheckOptions fo;
   fo.max_work = std::max<long long>(first_work_, 1);
+  fo.end_proof = std::max(options_.fold_screen, 0.0);
   FoldCheckResult fc = check_folding(net_, fo);
   if (!fc.out_of_budget) st_.fold = fc;
 }

@@ -96,7 +96,8 @@ double flaps_distance(const Net& net, double t) {
 }
 
 // Every DC-shell of a shared composite model (default pipeline) unfolds into an overlap-free net
-// whose folding is verified, and the returned net checked on its own gets the same proof.
+// whose folding is verified, and the returned net checked on its own (with the unfolder's end
+// proof) gets the same proof.
 // Skipped without the shared data.
 void expect_every_dc_shell_net_verified(const std::string& model, std::size_t shells) {
   if (!have_shared_data()) {
@@ -112,7 +113,9 @@ void expect_every_dc_shell_net_verified(const std::string& model, std::size_t sh
     Net net = unfold_convex_mesh(sr.shells[i].mesh, {}, &st);
     BOOST_TEST(st.result.overlapping_pairs == 0);
     BOOST_TEST(st.fold.verified, model << " shell " << i << ": " << st.fold.message);
-    BOOST_TEST(check_folding(net).verified == st.fold.verified);
+    FoldCheckOptions same;  // the unfolder's checks prove the end of the path on its own
+    same.end_proof = UnfoldOptions{}.fold_screen;
+    BOOST_TEST(check_folding(net, same).verified == st.fold.verified);
   }
 }
 
@@ -243,13 +246,14 @@ BOOST_AUTO_TEST_CASE(fold_check_conclusive_failures_of_the_end_refute_the_whole_
   // Random cut trees of ellipsoid hulls, checked from t = 0.999 and from t = 0: a conclusive
   // failure of the end never belongs to a net the whole check verifies, and conclusive
   // failures do occur (they are what the unfolder's screen skips the whole check for). With
-  // end_first the check returns that failure, or else exactly what the whole check returns
-  // (the end's set-up is shared, not its proofs).
+  // end_first the check returns that failure, or else exactly what the whole check with the
+  // same end proof returns (the end's set-up is shared, not its proofs).
   int conclusive = 0, verified = 0;
   for_random_ellipsoid_nets([&](const Net& net) {
-    FoldCheckOptions end;
+    FoldCheckOptions end, split;
     end.t_begin = 0.999;
-    const auto screened = check_folding(net, end), whole = check_folding(net);
+    split.end_proof = 1e-3;
+    const auto screened = check_folding(net, end), whole = check_folding(net, split);
     if (screened.conclusive) {
       ++conclusive;
       BOOST_TEST(!whole.verified, screened.message);
@@ -479,8 +483,9 @@ BOOST_AUTO_TEST_CASE(fold_check_past_its_piece_limit_is_undecided_not_verified) 
 
 BOOST_AUTO_TEST_CASE(fold_check_pair_bound_stops_undecided_and_counts_in_the_work) {
   // The icosahedron's net: unbounded, the check verifies with P candidate pairs over its steps
-  // and uses steps x pieces of budget. With the pairs bounded below P it stops undecided at the
-  // step that passes the bound; bounded above P it gives the same verdict and steps as before.
+  // and uses (steps + the end proof's steps) x pieces of budget. With the pairs bounded below P
+  // it stops undecided at the step that passes the bound; bounded above P it gives the same
+  // verdict and steps as before.
   // Corners tested against planes only add to the work.
   UnfoldOptions o;
   o.fold_candidates = 0;
@@ -490,7 +495,7 @@ BOOST_AUTO_TEST_CASE(fold_check_pair_bound_stops_undecided_and_counts_in_the_wor
   const auto a = check_folding(net, free_run);
   BOOST_TEST_REQUIRE(a.verified, a.message);
   BOOST_TEST_REQUIRE(a.pair_tests > 10);
-  BOOST_TEST(a.work == static_cast<long long>(a.steps) * a.pieces);
+  BOOST_TEST(a.work == static_cast<long long>(a.steps + a.end_first_steps) * a.pieces);  // the end's own pass counts too
   FoldCheckOptions low = free_run;
   low.pairs_per_work = static_cast<double>(a.pair_tests / 2) / static_cast<double>(low.max_work);
   const auto b = check_folding(net, low);
@@ -914,4 +919,47 @@ BOOST_AUTO_TEST_CASE(fold_selection_descends_by_edge_swaps_from_the_verified_net
   const int improved = selections_improved(off, on);
   BOOST_TEST_MESSAGE(improved << " of 16 selections shortened by the descent");
   BOOST_TEST(improved >= 2);
+}
+
+BOOST_AUTO_TEST_CASE(fold_check_proves_the_end_once) {
+  // With end_proof the end [0.999, 1] is proved on its own and the pass from 0 stops where it
+  // begins. That verifies every net the single pass from 0 to 1 (the default) verifies, and a
+  // net it verifies beyond those has no crossing in 4,000 sampled states. Such a net is the one
+  // returned for Squirtle's DC-shell 1 (its single pass crawls at t = 1 - 1e-9 between two
+  // pieces that touch in the folded shell); on the synthetic trees below none occurs.
+  int single = 0, split_only = 0, ends_proved = 0;
+  auto run = [&](const Net& net) {
+    FoldCheckOptions split;
+    split.end_proof = 1e-3;
+    const auto a = check_folding(net), b = check_folding(net, split);
+    single += a.verified;
+    BOOST_TEST(!(a.verified && !b.verified), b.message);
+    ends_proved += b.end_first_steps > 0;
+    if (b.verified && !a.verified) {
+      ++split_only;
+      BOOST_TEST(!find_sampled_collision(net, 4000, 1e-7).has_value(), a.message);
+    }
+  };
+  for_random_ellipsoid_nets(run);
+  for (std::uint64_t seed : {1, 2, 3}) {
+    const Mesh m = ellipsoid_hull(150, seed, 0.6, 0.35);
+    for (int attempt = 0; attempt < 4; ++attempt) {
+      UnfoldOptions o;
+      o.heuristic = attempt % 2 ? UnfoldHeuristic::flat : UnfoldHeuristic::steepest;
+      o.fold_candidates = 0;
+      o.seed = 100 * seed + attempt;
+      run(unfold_convex_mesh(m, o));
+    }
+  }
+  BOOST_TEST(single > 0);
+  BOOST_TEST(ends_proved > 0);
+  if (have_shared_data()) {
+    std::vector<std::string> warnings;
+    auto parts = load_parts({shared_data() + "/composite/Squirtle"}, warnings);
+    ShellResult sr = build_shells(parts, ShellOptions{});
+    BOOST_TEST_REQUIRE(sr.shells.size() > 1);
+    const int before = split_only;
+    run(unfold_convex_mesh(sr.shells[1].mesh));
+    BOOST_TEST(split_only == before + 1);
+  }
 }
