@@ -1109,7 +1109,7 @@ FoldCheckResult Checker::step_path(double t0, bool screening, double t_stop) {
     res.pairs = static_cast<int>(pairs_.size());
   };
 
-  std::vector<double> abs_lever(nb), abs_theta(nb), box_lo(3 * nb), box_hi(3 * nb);
+  std::vector<double> abs_lever(nb), abs_theta(nb), box_lo(3 * nb), box_hi(3 * nb), box_r(nb);
   std::vector<std::pair<int, int>> cand;
   // Steps allowed: max_steps, and max_work / pieces when a work budget is given.
   const long long step_cap =
@@ -1157,6 +1157,7 @@ FoldCheckResult Checker::step_path(double t0, bool screening, double t_stop) {
     // (closed boxes: touching counts).
     for (int b = 0; b < nb; ++b) {
       double r = travel(dt, abs_lever[b], abs_theta[b]) + tol_;
+      box_r[b] = r;
       double* lo = &box_lo[3 * b];
       double* hi = &box_hi[3 * b];
       lo[0] = lo[1] = lo[2] = kInf, hi[0] = hi[1] = hi[2] = -kInf;
@@ -1210,11 +1211,31 @@ FoldCheckResult Checker::step_path(double t0, bool screening, double t_stop) {
           h = std::max(hc, hp);
         }
       } else {
-        double d = polygon_distance(poly_[p], poly_[q], tol_) - tol_;
         // up_p is the start of p's way to the root: its levers are this step's first ones.
         const std::size_t kp = pi.up_p.size(), kq = pi.up_q.size();
         const double L = (kp ? lever_[lever_off_[p] + kp - 1] : 0) + (kq ? lever_[lever_off_[q] + kq - 1] : 0);
         double S = std::max(pi.Sp, pi.Sq);
+        // The pieces' boxes (their travel boxes shrunk back) are apart by at most the pieces'
+        // distance: when that lower bound already proves the pair over the step tried, the
+        // exact distance is not needed. (It could only prove the pair longer; a shorter proof
+        // just brings the pair back sooner. Only over the whole step: a bound that cut the step
+        // would make the steps collapse, 8x slower on Squirtle.)
+        {
+          double g2 = 0;
+          for (int k = 0; k < 3; ++k) {
+            const double gap = std::max(box_lo[3 * q + k] + box_r[q] - (box_hi[3 * p + k] - box_r[p]),
+                                        box_lo[3 * p + k] + box_r[p] - (box_hi[3 * q + k] - box_r[q]));
+            if (gap > 0) g2 += gap * gap;
+          }
+          const double lb = std::sqrt(g2) - tol_;
+          const double hl = lb > 0 ? lb / (L + lb * S) : 0;  // travel(hl, L, S) = lb
+          if (hl >= dt) {
+            if (t + hl >= end_from_[id]) mark_done(id);
+            else safe_until_[id] = t + hl;
+            continue;
+          }
+        }
+        double d = polygon_distance(poly_[p], poly_[q], tol_) - tol_;
         double hd = d > 0 ? d / (L + d * S) : 0;  // travel(h, L, S) = d
         if (d > 0 && opt_.second_order) hd = std::max(hd, taylor_step(p, q, d, L, pi));
         double hp = hd < dt ? advance(p, q, pi) : 0;
