@@ -355,7 +355,7 @@ class Checker {
   FoldCheckResult run();
 
  private:
-  // Steps the path from t0 to 1 (the set-up done). screening: a pair proved to the end is not
+  // Steps the path from t0 to t_stop, 1 unless the end beyond it is proved (the set-up done). screening: a pair proved to the end is not
   // marked done in its slot (a later pass from an earlier t0 must examine it again).
   FoldCheckResult step_path(double t0, bool screening, double t_stop = 1);
 
@@ -1215,11 +1215,10 @@ FoldCheckResult Checker::step_path(double t0, bool screening, double t_stop) {
         const std::size_t kp = pi.up_p.size(), kq = pi.up_q.size();
         const double L = (kp ? lever_[lever_off_[p] + kp - 1] : 0) + (kq ? lever_[lever_off_[q] + kq - 1] : 0);
         double S = std::max(pi.Sp, pi.Sq);
-        // The pieces' boxes (their travel boxes shrunk back) are apart by at most the pieces'
-        // distance: when that lower bound already proves the pair over the step tried, the
-        // exact distance is not needed. (It could only prove the pair longer; a shorter proof
-        // just brings the pair back sooner. Only over the whole step: a bound that cut the step
-        // would make the steps collapse, 8x slower on Squirtle.)
+        // The gap between the pieces' boxes (their travel boxes shrunk back) is a lower bound on
+        // their distance. When it already proves the pair over the whole step tried, the exact
+        // distance is skipped; the shorter proof only brings the pair back sooner. It is never
+        // used to cut the step: then the steps collapse (8x slower on Squirtle).
         {
           double g2 = 0;
           for (int k = 0; k < 3; ++k) {

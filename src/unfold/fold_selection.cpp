@@ -103,10 +103,10 @@ bool FoldSelection::check(const Genome& genome, const std::string& heuristic, lo
     // 2,000-point sphere hull's 55 (1.7 s a check, all undecided).
     fo.pairs_per_work = kPairsPerWork;
     fo.corners_per_work = kCornersPerWork;
-    // A deferred net was screened on its first pass; one whose end the screen could not prove is
-    // set aside, not checked from t = 0 (it nearly never verifies from there).
     // The end is proved on its own (the same window): the pass from t = 0 stops where it begins.
     fo.end_proof = std::max(options_.fold_screen, 0.0);
+    // A deferred net was screened on its first pass; one whose end the screen could not prove is
+    // set aside, not checked from t = 0 (it nearly never verifies from there).
     if (first_pass) fo.end_first = options_.fold_screen, fo.end_first_defers = true;
     if (proved) fo.proved_group = *proved;
     fc = check_folding(candidate, fo);
