@@ -23,8 +23,8 @@ struct ShellOptions {
   /// (no shell of its own; reported). Exactly nested and duplicated parts are absorbed too.
   double absorb_fraction = 0.99;
   /// Simplify + regularise hulls before cutting and shells after (0 = off), paper: 10 and 5%.
-  /// The volume bound is split between the two stages: each may grow its input (a hull, then
-  /// a shell) by sqrt(1 + R) - 1, so that the two compound to R.
+  /// The volume bound covers both stages: a hull may grow by sqrt(1 + R) - 1, and each shell
+  /// is remeshed within (1 + R) x the volume of its part's original hull cut by its planes.
   int simplify_iterations = 0;
   double max_volume_increase = 0.05;
   /// Remeshing ends by giving flat facets (cut faces) their fattest triangulation (remesh.h).

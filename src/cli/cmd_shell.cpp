@@ -169,7 +169,7 @@ int run_shell(int argc, char** argv) {
         "simplify-iterations", po::value(&opt.simplify_iterations)->default_value(0),
         "simplify + regularise hulls and shells (paper: 10; 0 = off)")(
         "max-volume-increase", po::value(&opt.max_volume_increase)->default_value(0.05),
-        "volume increase allowed to remeshing (paper: 0.05), split between hulls and shells")(
+        "volume increase allowed to remeshing (paper: 0.05): each shell against its part's hull cut by the same planes")(
         "no-domes", "remeshing keeps cut faces exactly where they were (no fattest re-triangulation by 1e-9 domes)")(
         "no-splits", "remeshing splits no edges (no lifted points on the worst slivers' long edges)")(
         "no-flips", "remeshing flips no edges (no vertex raised to turn a long thin pair of faces)")(

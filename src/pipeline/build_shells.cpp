@@ -8,6 +8,7 @@
 
 #include "dcshell/convex_hull.h"
 #include "dcshell/exact_polytope.h"
+#include "dcshell/mesh_volume.h"
 #include "dcshell/overlaps.h"
 #include "dcshell/parallel_for.h"
 #include "dcshell/polytope_clip.h"
@@ -87,8 +88,9 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
   remesh_opt.fatten_flat_facets = opt.fatten_flat_facets;
   remesh_opt.edge_splits = opt.edge_splits;
   remesh_opt.edge_flips = opt.edge_flips;
-  // Hulls are remeshed before cutting and shells after: each stage may grow its input by
-  // sqrt(1 + R) - 1, so the two together stay near R (the paper's 5% is one bound).
+  // Hulls are remeshed before cutting and shells after; the paper's 5% is one bound for both.
+  // A hull may grow by sqrt(1 + R) - 1; each shell then gets what is left of (1 + R) x the
+  // volume of its part's original hull cut by the same planes (below).
   remesh_opt.max_volume_increase = std::sqrt(1.0 + opt.max_volume_increase) - 1.0;
   // Input points within rounding of the hull of the others (a vertex 1e-11 off the line of an
   // edge) make sliver faces that no net can fold along; the hulls that are cut leave them out.
@@ -187,7 +189,15 @@ ShellResult build_shells(const std::vector<Part>& parts, const ShellOptions& opt
       RemeshOptions o = remesh_opt;
       std::vector<CutPlane> keep;
       for (const auto& c : s.cuts) keep.push_back(c.plane);
-      if (remesh_opt.steiner_points) o.max_faces = trim_shell(original[s.part], keep).number_of_faces();
+      const Mesh plain = trim_shell(original[s.part], keep);
+      if (remesh_opt.steiner_points) o.max_faces = plain.number_of_faces();
+      // The bound holds per shell against the part's own hull cut by the same planes: what the
+      // hull stage left of it is this stage's (where the hull grew less than its share, the
+      // shell may use the rest; where its growth went into what the cuts keep, less).
+      const double v_plain = CGAL::to_double(six_signed_volume(plain));
+      const double v_now = CGAL::to_double(six_signed_volume(s.mesh));
+      if (v_plain > 0 && v_now > 0)
+        o.max_volume_increase = std::max(0.0, (1.0 + opt.max_volume_increase) * v_plain / v_now - 1.0);
       s.mesh = remesh_convex_shell(s.mesh, cons[k], o, &s.remesh);
       s.remeshed = true;
     });

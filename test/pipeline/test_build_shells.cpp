@@ -9,6 +9,7 @@
 #include "dcshell/build_shells.h"
 #include "dcshell/convex_hull.h"
 #include "dcshell/load_parts.h"
+#include "dcshell/mesh_volume.h"
 #include "dcshell/trim.h"
 #include "synthetic_parts.h"
 
@@ -267,6 +268,13 @@ BOOST_AUTO_TEST_CASE(remeshed_shells_stay_certified_and_get_fatter) {
       faces_b += double(sh.remesh.faces_before), faces_a += double(sh.remesh.faces_after);
       sink = std::max(sink, sh.remesh.flat.max_inward);
       BOOST_TEST(sh.remesh.volume_increase() <= 0.05 + 1e-9, name);
+      // Both stages together: within 5% of the part's own hull cut by the same planes.
+      std::vector<CutPlane> keep;
+      for (const auto& c : sh.cuts) keep.push_back(c.plane);
+      const Mesh plain = trim_shell(exact_hull(parts[sh.part].points), keep);
+      const double v_plain = CGAL::to_double(six_signed_volume(plain)) / 6;
+      BOOST_TEST(v_plain > 0, name);
+      BOOST_TEST(sh.volume <= 1.05 * v_plain * (1 + 1e-9), name << " shell of part " << sh.part);
     }
     BOOST_TEST(fa >= fb, name);
     BOOST_TEST(faces_a <= faces_b, name);
