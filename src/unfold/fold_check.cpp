@@ -355,8 +355,9 @@ class Checker {
   FoldCheckResult run();
 
  private:
-  // Steps the path from t0 to t_stop, 1 unless the end beyond it is proved (the set-up done). screening: a pair proved to the end is not
-  // marked done in its slot (a later pass from an earlier t0 must examine it again).
+  // Steps the path from t0 to t_stop: 1, or where an end already proved begins (the set-up
+  // done). screening: a pair proved to the end is not marked done in its slot (a later pass
+  // from an earlier t0 must examine it again).
   FoldCheckResult step_path(double t0, bool screening, double t_stop = 1);
 
   const Net& net_;
