@@ -93,10 +93,12 @@ int main(int argc, char** argv) {
       "the selected columns: fallback slack of the fold selection (0: none; default as dcshell unfold)")(
       "no-recheck-better", "the selected columns: no re-check of better undecided nets (UnfoldOptions::fold_recheck_work = 0)")(
       "improve-attempts", po::value(&selection.fold_improve_attempts),
-      "the selected columns: UnfoldOptions::fold_improve_attempts (fresh trees better than the verified net; 0: none, negative: as dcshell unfold)");
+      "the selected columns: UnfoldOptions::fold_improve_attempts (fresh trees better than the verified net; 0: none, negative: as dcshell unfold)")(
+      "one-objective", "the selected columns: no second selection by the other objective (UnfoldOptions::fold_other_objective = false)");
   po::variables_map vm;
   if (!dcshell::bench::parse_options(argc, argv, opts, vm)) return 0;
   if (vm.count("no-recheck-better")) selection.fold_recheck_work = 0;
+  if (vm.count("one-objective")) selection.fold_other_objective = false;
   if (!fs::is_directory(data)) {
     std::cerr << "bench_fold: no data directory " << data << "; nothing to measure\n";
     return 0;

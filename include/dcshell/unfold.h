@@ -103,6 +103,10 @@ struct UnfoldOptions {
   /// 5.7%, up to 23%) for 26% more time over the 69 (medians of 3), most of it on the shells
   /// that gained (up to 3.6 s for 598 faces; doc/fold_check.md).
   long long fold_descent_work = -1;
+  /// When no net of this objective verifies (`heuristic` best or ga), the selection of the other
+  /// objective (heuristic best) runs too, and its net is returned if it verifies, or is
+  /// overlap-free where this one is not (UnfoldStats::objective says which ranked it).
+  bool fold_other_objective = true;
 };
 
 /// Features of a net, each in model units.
@@ -128,6 +132,9 @@ struct UnfoldStats {
   FoldCheckResult fold;         ///< folding check of the returned net (not run: verified=false, steps=0)
   int fold_checks = 0;          ///< nets whose folding was checked
   bool fold_fallback = false;   ///< the returned net verified only within fold_fallback_slack
+  /// The objective whose selection gave the returned net: options.objective, or the other one
+  /// when only that one's net verified (UnfoldOptions::fold_other_objective).
+  UnfoldObjective objective = UnfoldObjective::hull_area;
   double seconds = 0;
 };
 

@@ -176,7 +176,8 @@ int run_unfold(int argc, char** argv) {
         "fold-work", po::value(&fold_work)->default_value(UnfoldOptions{}.fold_work),
         "work budget of the folding checks per 200 faces of a shell, at most 3x this per shell (pieces placed; a count, not a time)")(
         "fold-descent-work", po::value(&fold_descent_work)->default_value(UnfoldOptions{}.fold_descent_work),
-        "cut length: budget of the edge-swap descent from the verified net, scaled like --fold-work (0: none; negative: 2x --fold-work)");
+        "cut length: budget of the edge-swap descent from the verified net, scaled like --fold-work (0: none; negative: 2x --fold-work)")(
+        "one-objective", "when no net of --objective folds, do not try the other objective's selection (best, ga)");
     std::vector<std::string> inputs;
     po::variables_map vm;
     if (!parse_command_line(argc, argv, opts, inputs, vm)) return 0;
@@ -201,6 +202,7 @@ int run_unfold(int argc, char** argv) {
     uo.fold_slack = fold_slack;
     uo.fold_fallback_slack = fold_fallback_slack;
     uo.fold_work = fold_work;
+    uo.fold_other_objective = !vm.count("one-objective");
     if (out.empty()) throw InputError("--out DIR is required (see 'dcshell unfold --help')");
     if (inputs.empty()) throw InputError("no input shells (see 'dcshell unfold --help')");
     if (format == "svg") so.format = SheetOptions::Format::svg;
@@ -328,7 +330,8 @@ int run_unfold(int argc, char** argv) {
         json.field("index", index[k]).field("input", s.input).field("name", s.net.name).field("net", s.net_file);
         json.field("faces", s.stats.faces).field("facets", s.stats.facets).field("flat_angle", s.stats.flat_angle);
         json.field("convex", s.stats.convex).field("reflex_edges", s.stats.reflex_edges);
-        json.field("heuristic", s.stats.heuristic).field("attempts", s.stats.attempts);
+        json.field("heuristic", s.stats.heuristic).field("objective", to_string(s.stats.objective));
+        json.field("attempts", s.stats.attempts);
         json.field("cut_length", s.stats.result.cut_length).field("hull_area", s.stats.result.hull_area);
         json.field("overlap_free", s.stats.result.overlapping_pairs == 0)
             .field("overlapping_pairs", s.stats.result.overlapping_pairs);
