@@ -780,17 +780,31 @@ BOOST_AUTO_TEST_CASE(fold_check_broad_phase_finds_every_meeting_pair_of_boxes) {
   BOOST_TEST(touching > 0);  // the closed case was exercised
 }
 
+namespace {
+
+// The selection stages' tests: ellipsoid hulls of 30-60 points, and options under which only the
+// best net is checked (no slack, no fallback, one objective), widened one stage at a time.
+Mesh selection_shell(std::uint64_t seed) {
+  return ellipsoid_hull(30 + 10 * int(seed % 4), seed, (1.0 + 0.1 * double(seed)) / 3, 0.5 / 3);
+}
+UnfoldOptions best_net_only() {
+  UnfoldOptions o;
+  o.fold_slack = 0;
+  o.fold_fallback_slack = 0;
+  o.fold_other_objective = false;
+  return o;
+}
+
+}  // namespace
+
 BOOST_AUTO_TEST_CASE(fold_fallback_finds_a_folding_net_beyond_the_slack) {
   // With no slack only the best net is checked; where its straight-line fold collides, the
   // fallback checks nets up to fold_fallback_slack worse and returns one that folds. Where the
   // best net folds, the fallback never runs and the answer is the same net.
   int recovered = 0;
   for (std::uint64_t seed = 1; seed <= 24; ++seed) {
-    const Mesh shell = ellipsoid_hull(30 + 10 * int(seed % 4), seed, (1.0 + 0.1 * double(seed)) / 3, 0.5 / 3);
-    UnfoldOptions strict;
-    strict.fold_slack = 0;
-    strict.fold_fallback_slack = 0;
-    strict.fold_other_objective = false;  // the fallback alone
+    const Mesh shell = selection_shell(seed);
+    const UnfoldOptions strict = best_net_only();
     UnfoldOptions fallback = strict;
     fallback.fold_fallback_slack = 3.0;
     UnfoldStats a, b;
@@ -820,11 +834,8 @@ BOOST_AUTO_TEST_CASE(fold_selection_turns_to_the_other_objective_when_no_net_fol
   // marked with its objective; where the hull-area one folds, nothing changes.
   int rescued = 0;
   for (std::uint64_t seed = 1; seed <= 48; ++seed) {
-    const Mesh shell = ellipsoid_hull(30 + 10 * int(seed % 4), seed, (1.0 + 0.1 * double(seed)) / 3, 0.5 / 3);
-    UnfoldOptions one;
-    one.fold_slack = 0;
-    one.fold_fallback_slack = 0;
-    one.fold_other_objective = false;
+    const Mesh shell = selection_shell(seed);
+    const UnfoldOptions one = best_net_only();
     UnfoldOptions both = one;
     both.fold_other_objective = true;
     UnfoldStats a, b;
