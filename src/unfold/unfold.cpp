@@ -577,11 +577,11 @@ Net unfold_impl(const Mesh& mesh, const UnfoldOptions& options, const GaOptions*
     st.heuristic = ranked.front().heuristic;
   }
   st.objective = options.objective;
-  // No net verified: the other objective ranks other trees first (and, for cut length, runs its
-  // own search and the edge-swap descent), so its selection is run too, and a net of it that
-  // verifies (or, when none here is overlap-free, that is) is returned. Only these shells pay:
-  // four radius-1e-3 spheres at 1e9 had a 336-face shell whose hull-area selection verified
-  // none of 70 nets, where cut length verified one of even smaller hull area.
+  // No net verified: the other objective ranks other trees first (cut length also searches its
+  // own: the minimum-length tree, its jitters, every greedy variant), so its selection is run
+  // too, and a net of it that verifies (or, when none here is overlap-free, that is) is
+  // returned. Only these shells pay: four radius-1e-3 spheres at 1e9 had a 336-face shell whose
+  // hull-area selection verified none of 70 nets, where the cut-length one verifies.
   if (checks > 0 && !st.fold.verified && options.fold_other_objective &&
       (options.heuristic == UnfoldHeuristic::best || options.heuristic == UnfoldHeuristic::ga)) {
     UnfoldOptions other = options;
